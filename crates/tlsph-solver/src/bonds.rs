@@ -1,0 +1,211 @@
+//! Reference-configuration bonds (CSR) with their kernel gradients, built once per TL body.
+//!
+//! For bond b = (I → J) we store the weighted gradient V0_J G̃_IJ used by the F and Ḟ gathers
+//! (numerics.md §4.2–4.3) and the weighted reverse gradient V0_J G̃_JI used by the
+//! momentum-conserving force sum m_I a_I = Σ_J V0_I V0_J (P_I G̃_IJ − P_J G̃_JI)
+//! (numerics.md §4.5 form (c)). Storing both keeps the per-step loops streaming through memory.
+
+use rayon::prelude::*;
+use std::ops::Range;
+use tlsph_kernels::{AnyKernel, Kernel};
+use tlsph_math::{embed_with_identity, outer, project, Tensor, Tensor3, Vector};
+use tlsph_neighbours::NeighbourList;
+
+/// Singular values of the correction matrix A_I below this are clipped (numerics.md §6.2 guard).
+/// A_I ≈ I with full support; a boundary particle in 1D has ≈ 0.5, so 0.1 only catches
+/// genuinely degenerate neighbourhoods (too few or collinear neighbours).
+const MIN_CORRECTION_SINGULAR_VALUE: f64 = 0.1;
+
+/// CSR bonds over all particles; bonds never cross bodies.
+#[derive(Debug, Clone, Default)]
+pub struct Bonds<const D: usize> {
+    /// offsets[i]..offsets[i+1] are the bonds of particle i.
+    pub(crate) offsets: Vec<usize>,
+    /// Global index of the neighbour J of each bond.
+    pub(crate) neighbours: Vec<u32>,
+    /// V0_J G̃_IJ for each bond.
+    pub(crate) gradient: Vec<Vector<D>>,
+    /// V0_J G̃_JI for each bond.
+    pub(crate) reverse_gradient: Vec<Vector<D>>,
+    /// Σ_J V0_J G̃_IJ per particle (vanishes in the interior; needed by the force sum).
+    pub(crate) gradient_sum: Vec<Vector<D>>,
+}
+
+/// What the gradient correction had to do at setup.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CorrectionReport {
+    /// Particles whose correction matrix was ill-conditioned and was regularised
+    /// (global indices).
+    pub regularised_particles: Vec<usize>,
+}
+
+impl<const D: usize> Bonds<D> {
+    /// Number of bonds (each unordered pair counted twice).
+    pub fn n_bonds(&self) -> usize {
+        self.neighbours.len()
+    }
+
+    /// Bond range of particle `i`.
+    #[inline]
+    pub fn range(&self, i: usize) -> Range<usize> {
+        self.offsets[i]..self.offsets[i + 1]
+    }
+
+    /// Neighbours of particle `i` (global indices).
+    pub fn neighbours_of(&self, i: usize) -> &[u32] {
+        &self.neighbours[self.range(i)]
+    }
+
+    /// Corrected (or raw) gradients V0_J G̃_IJ of particle `i`, in neighbour order.
+    pub fn weighted_gradients_of(&self, i: usize) -> &[Vector<D>] {
+        &self.gradient[self.range(i)]
+    }
+}
+
+/// Per-body input to [`build_bonds`].
+pub(crate) struct BodyBonds<'a, const D: usize> {
+    /// Global index of the body's first particle.
+    pub first: usize,
+    /// Reference positions of the body's particles.
+    pub positions0: &'a [Vector<D>],
+    /// Reference volumes.
+    pub volumes0: &'a [f64],
+    /// Reference neighbour list (body-local indices).
+    pub neighbours: NeighbourList,
+    /// The body's kernel.
+    pub kernel: AnyKernel,
+}
+
+/// Builds bonds for all bodies (in order) and their gradients.
+pub(crate) fn build_bonds<const D: usize>(
+    bodies: &[BodyBonds<'_, D>],
+    corrected: bool,
+) -> (Bonds<D>, CorrectionReport) {
+    let mut bonds = Bonds::<D>::default();
+    let mut report = CorrectionReport::default();
+    bonds.offsets.push(0);
+    for body in bodies {
+        let list = &body.neighbours;
+        let n = body.positions0.len();
+        // Per-particle gradients G̃_IJ (unweighted) in neighbour order.
+        let per_particle: Vec<(Vec<Vector<D>>, bool)> = (0..n)
+            .into_par_iter()
+            .map(|i| particle_gradients(i, body, corrected))
+            .collect();
+        let base = bonds.neighbours.len();
+        for (i, (grads, regularised)) in per_particle.iter().enumerate() {
+            if *regularised {
+                report.regularised_particles.push(body.first + i);
+            }
+            for (&j, g) in list.neighbours_of(i).iter().zip(grads) {
+                bonds.neighbours.push((body.first + j as usize) as u32);
+                bonds.gradient.push(g * body.volumes0[j as usize]);
+            }
+            bonds.offsets.push(bonds.neighbours.len());
+        }
+        // Reverse gradients: bond I→J finds I in J's sorted list.
+        for i in 0..n {
+            for (k, &j) in list.neighbours_of(i).iter().enumerate() {
+                let j = j as usize;
+                let back = list
+                    .neighbours_of(j)
+                    .binary_search(&(i as u32))
+                    .expect("reference neighbour lists are symmetric");
+                let g_ji = per_particle[j].0[back];
+                bonds.reverse_gradient.push(g_ji * body.volumes0[j]);
+                debug_assert_eq!(
+                    bonds.reverse_gradient.len(),
+                    base + list.offsets()[i] + k + 1
+                );
+            }
+        }
+    }
+    bonds.gradient_sum = (0..bonds.offsets.len() - 1)
+        .into_par_iter()
+        .map(|i| {
+            bonds.gradient[bonds.offsets[i]..bonds.offsets[i + 1]]
+                .iter()
+                .fold(Vector::<D>::zeros(), |s, g| s + g)
+        })
+        .collect();
+    (bonds, report)
+}
+
+/// G̃_IJ for all neighbours J of particle `i` (body-local), and whether the correction was
+/// regularised.
+fn particle_gradients<const D: usize>(
+    i: usize,
+    body: &BodyBonds<'_, D>,
+    corrected: bool,
+) -> (Vec<Vector<D>>, bool) {
+    let x = body.positions0;
+    let v0 = body.volumes0;
+    let neighbours = body.neighbours.neighbours_of(i);
+    let raw: Vec<Vector<D>> = neighbours
+        .iter()
+        .map(|&j| body.kernel.gradient(&(x[i] - x[j as usize])))
+        .collect();
+    if !corrected {
+        return (raw, false);
+    }
+    // Shepard sum including the particle itself (R 4.32): S_I = Σ_J V0_J W_IJ.
+    let mut shepard = v0[i] * body.kernel.value(0.0);
+    let mut gradient_sum = Vector::<D>::zeros();
+    for (&j, g) in neighbours.iter().zip(&raw) {
+        let j = j as usize;
+        shepard += v0[j] * body.kernel.value((x[i] - x[j]).norm());
+        gradient_sum += g * v0[j];
+    }
+    // Quotient-rule Shepard gradient (R 6.7): ∇W̃_IJ = (G_IJ S_I − W_IJ Σ_K V0_K G_IK) / S_I².
+    let normalised: Vec<Vector<D>> = neighbours
+        .iter()
+        .zip(&raw)
+        .map(|(&j, g)| {
+            let w = body.kernel.value((x[i] - x[j as usize]).norm());
+            (g * shepard - gradient_sum * w) / (shepard * shepard)
+        })
+        .collect();
+    // Randles–Libersky correction (R 4.50–4.55): A_I = Σ_J V0_J (X_J − X_I) ⊗ ∇W̃_IJ,
+    // G̃_IJ = B_Iᵀ ∇W̃_IJ with B_I = A_I⁻¹, so that Σ_J V0_J (X_J − X_I) ⊗ G̃_IJ = I.
+    let mut a = Tensor::<D>::zeros();
+    for (&j, g) in neighbours.iter().zip(&normalised) {
+        let j = j as usize;
+        a += outer(&(x[j] - x[i]), g) * v0[j];
+    }
+    let (b, regularised) = guarded_inverse(&a);
+    let corrected = normalised.iter().map(|g| b.transpose() * g).collect();
+    (corrected, regularised)
+}
+
+/// A⁻¹, or a pseudo-inverse with singular values clipped from below when A is degenerate
+/// (numerics.md §6.2 guard). Returns whether clipping happened.
+fn guarded_inverse<const D: usize>(a: &Tensor<D>) -> (Tensor<D>, bool) {
+    // Identity padding leaves the D×D block's inverse unchanged and lets us use 3x3 routines.
+    let a3: Tensor3 = embed_with_identity(a);
+    let svd = a3.svd(true, true);
+    let (u, v_t) = match (svd.u, svd.v_t) {
+        (Some(u), Some(v_t)) => (u, v_t),
+        _ => return (Tensor::identity(), true),
+    };
+    let degenerate = svd
+        .singular_values
+        .iter()
+        .any(|s| !(s.is_finite() && *s >= MIN_CORRECTION_SINGULAR_VALUE));
+    if !degenerate {
+        if let Some(inverse) = a.try_inverse() {
+            return (inverse, false);
+        }
+    }
+    let mut inv_sigma = Tensor3::zeros();
+    for k in 0..3 {
+        let s = svd.singular_values[k];
+        let s = if s.is_finite() {
+            s.max(MIN_CORRECTION_SINGULAR_VALUE)
+        } else {
+            1.0
+        };
+        inv_sigma[(k, k)] = 1.0 / s;
+    }
+    let inverse = v_t.transpose() * inv_sigma * u.transpose();
+    (project::<D>(&inverse), true)
+}

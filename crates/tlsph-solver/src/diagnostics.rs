@@ -1,0 +1,26 @@
+//! Whole-model diagnostics: energies and momenta. Sums run sequentially in particle order so
+//! they are bit-identical for any thread count.
+
+use tlsph_math::Vector3;
+
+/// Energies and momenta at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Diagnostics {
+    /// Simulated time [s].
+    pub time: f64,
+    /// Σ ½ m |v|² [J].
+    pub kinetic: f64,
+    /// Σ m e [J] (R 4.12).
+    pub internal: f64,
+    /// Σ m v [kg m/s], padded to 3D.
+    pub linear_momentum: Vector3,
+    /// Σ m x × v about the origin [kg m²/s], padded to 3D.
+    pub angular_momentum: Vector3,
+}
+
+impl Diagnostics {
+    /// Kinetic + internal energy [J].
+    pub fn total_energy(&self) -> f64 {
+        self.kinetic + self.internal
+    }
+}

@@ -1,0 +1,130 @@
+//! Setup and step errors. Every error names what went wrong and where (body, particle, step).
+
+use std::fmt;
+
+/// A model that cannot be simulated.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SetupError {
+    /// A configuration value is out of range.
+    InvalidConfig {
+        /// Field name, e.g. `cfl`.
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// A body refers to a material index that does not exist.
+    UnknownMaterial {
+        /// Body name.
+        body: String,
+        /// The bad index.
+        material: usize,
+    },
+    /// A body is unusable (no particles, inconsistent array lengths, bad spacing or volume).
+    InvalidBody {
+        /// Body name.
+        body: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A boundary set is unusable.
+    InvalidBoundary {
+        /// Boundary name.
+        boundary: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The kernel could not be built.
+    Kernel(String),
+    /// The neighbour search failed (e.g. a non-finite coordinate).
+    Neighbours {
+        /// Body name.
+        body: String,
+        /// Message from the search.
+        message: String,
+    },
+}
+
+impl fmt::Display for SetupError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SetupError::InvalidConfig { field, message } => write!(f, "{field}: {message}"),
+            SetupError::UnknownMaterial { body, material } => {
+                write!(
+                    f,
+                    "body `{body}` refers to material #{material}, which does not exist"
+                )
+            }
+            SetupError::InvalidBody { body, message } => write!(f, "body `{body}`: {message}"),
+            SetupError::InvalidBoundary { boundary, message } => {
+                write!(f, "boundary `{boundary}`: {message}")
+            }
+            SetupError::Kernel(message) => write!(f, "kernel: {message}"),
+            SetupError::Neighbours { body, message } => {
+                write!(f, "neighbour search for body `{body}`: {message}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SetupError {}
+
+/// A step that could not be completed; the state before the step is left untouched where
+/// possible, and everything recorded so far stays valid.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepError {
+    /// A value became NaN or infinite.
+    NonFinite {
+        /// Step number.
+        step: u64,
+        /// Simulated time [s].
+        time: f64,
+        /// Body name.
+        body: String,
+        /// Particle index within the body.
+        particle: usize,
+        /// Field that is non-finite, e.g. `stress` or `velocity`.
+        field: &'static str,
+    },
+    /// The deformation gradient of a particle lost positive determinant (inversion).
+    Inverted {
+        /// Step number.
+        step: u64,
+        /// Simulated time [s].
+        time: f64,
+        /// Body name.
+        body: String,
+        /// Particle index within the body.
+        particle: usize,
+        /// det F.
+        jacobian: f64,
+    },
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StepError::NonFinite {
+                step,
+                time,
+                body,
+                particle,
+                field,
+            } => write!(
+                f,
+                "step {step} (t = {time:e}): {field} of particle {particle} of body `{body}` is not finite"
+            ),
+            StepError::Inverted {
+                step,
+                time,
+                body,
+                particle,
+                jacobian,
+            } => write!(
+                f,
+                "step {step} (t = {time:e}): particle {particle} of body `{body}` is inverted or crushed (det F = {jacobian:e} <= 0)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}

@@ -1,0 +1,31 @@
+//! Total-Lagrangian SPH for solids under dynamic loading (Reveles 2007, Algorithms 1–3).
+//!
+//! The solver owns particle state (structure of arrays), the reference-configuration bonds with
+//! their (corrected) kernel gradients, the constitutive update per material group and the
+//! staggered leap-frog integrator. It does no file access and no printing: setup returns a
+//! [`SetupError`], a step returns a [`StepReport`] or a [`StepError`] naming step, particle and
+//! field.
+//!
+//! Flow of one step (see `ARCHITECTURE.md`): drift u → gather F, Ḟ over bonds → constitutive
+//! update per body → internal forces gathered over bonds → boundary conditions → new Δt (CFL)
+//! → kick v.
+
+mod bonds;
+mod diagnostics;
+mod error;
+mod fields;
+mod model;
+mod particles;
+mod simulation;
+mod step;
+
+pub use bonds::{Bonds, CorrectionReport};
+pub use diagnostics::Diagnostics;
+pub use error::{SetupError, StepError};
+pub use fields::ParticleField;
+pub use model::{
+    BodyDescription, BoundaryDescription, Formulation, MaterialDescription, MaterialModel, Model,
+    SimulationConfig, StressUpdate,
+};
+pub use simulation::{BodyInfo, Simulation, StepReport};
+pub use tlsph_kernels::KernelKind;

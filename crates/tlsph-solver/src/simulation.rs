@@ -1,0 +1,618 @@
+//! The `Simulation`: setup from a `Model`, the staggered leap-frog step, and read access to
+//! the state for probes and diagnostics.
+
+use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
+use crate::diagnostics::Diagnostics;
+use crate::error::{SetupError, StepError};
+use crate::fields::ParticleField;
+use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
+use crate::particles::Particles;
+use crate::step::{
+    gather_accelerations, gather_kinematics, update_green_lagrange, update_jaumann_rate,
+    ConstitutiveStep,
+};
+use rayon::prelude::*;
+use std::ops::Range;
+use tlsph_kernels::Kernel;
+use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
+use tlsph_neighbours::build_neighbour_list;
+
+/// Static facts about one body of a running simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyInfo {
+    /// Body name.
+    pub name: String,
+    /// Global particle range.
+    pub range: Range<usize>,
+    /// Index of its material.
+    pub material: usize,
+    /// Smoothing length h [m].
+    pub smoothing_length: f64,
+    /// Reference density ρ0 [kg/m³].
+    pub density0: f64,
+    /// Sound speed at reference density c0 = sqrt(M/ρ0) [m/s].
+    pub sound_speed0: f64,
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport {
+    /// Index of the completed step (0 is the initial evaluation at t = 0).
+    pub step: u64,
+    /// Time of the state now held [s].
+    pub time: f64,
+    /// Step size that will be taken next [s].
+    pub next_dt: f64,
+    /// Global index of the particle that limits the next step (CFL).
+    pub limiting_particle: usize,
+}
+
+/// Prescribed-velocity set in global indices.
+#[derive(Debug, Clone)]
+struct PrescribedSet<const D: usize> {
+    particles: Vec<usize>,
+    velocity: Vector<D>,
+    components: [bool; D],
+}
+
+/// A running TLSPH simulation in `D` dimensions.
+///
+/// After [`Simulation::step`] returns, every quantity describes the same instant t^n:
+/// displacements u^n, Cauchy stress σ^n, internal energy e^n and (via [`Simulation::velocity`])
+/// v^n. Internally the velocity array holds the staggered v^{n+½} (R 5.61–5.71).
+#[derive(Debug, Clone)]
+pub struct Simulation<const D: usize> {
+    config: SimulationConfig,
+    materials: Vec<MaterialModel>,
+    bodies: Vec<BodyInfo>,
+    particles: Particles<D>,
+    bonds: Bonds<D>,
+    prescribed: Vec<PrescribedSet<D>>,
+    correction: CorrectionReport,
+    time: f64,
+    /// Steps completed (0 before the first call to `step`).
+    steps_done: u64,
+    /// Δt^{n+1}: the step the next call will take (0 before the first call).
+    next_dt: f64,
+}
+
+impl<const D: usize> Simulation<D> {
+    /// Validates the model, builds reference neighbour lists and gradients per body.
+    pub fn new(model: Model<D>) -> Result<Self, SetupError> {
+        let config = model.config.clone();
+        validate_config(&config)?;
+        if !(1..=3).contains(&D) {
+            return Err(SetupError::InvalidConfig {
+                field: "dimension",
+                message: format!("{D} is not 1, 2 or 3"),
+            });
+        }
+        let n_total: usize = model.bodies.iter().map(|b| b.positions.len()).sum();
+        let mut particles = Particles::with_capacity(n_total);
+        let mut bodies = Vec::with_capacity(model.bodies.len());
+        for body in &model.bodies {
+            let material =
+                model
+                    .materials
+                    .get(body.material)
+                    .ok_or_else(|| SetupError::UnknownMaterial {
+                        body: body.name.clone(),
+                        material: body.material,
+                    })?;
+            validate_body(body, material.density)?;
+            let first = particles.len();
+            for ((x, &v0), vel) in body
+                .positions
+                .iter()
+                .zip(&body.volumes)
+                .zip(&body.velocities)
+            {
+                particles.push(*x, v0, material.density, *vel);
+            }
+            bodies.push(BodyInfo {
+                name: body.name.clone(),
+                range: first..particles.len(),
+                material: body.material,
+                smoothing_length: config.smoothing_factor * body.spacing,
+                density0: material.density,
+                sound_speed0: (material.model.longitudinal_modulus() / material.density).sqrt(),
+            });
+        }
+        let mut body_bonds = Vec::with_capacity(bodies.len());
+        for info in &bodies {
+            let kernel = config
+                .kernel
+                .build(D, info.smoothing_length)
+                .map_err(|e| SetupError::Kernel(e.to_string()))?;
+            let positions0 = &particles.positions0[info.range.clone()];
+            let neighbours =
+                build_neighbour_list(positions0, kernel.support_radius()).map_err(|e| {
+                    SetupError::Neighbours {
+                        body: info.name.clone(),
+                        message: e.to_string(),
+                    }
+                })?;
+            body_bonds.push(BodyBonds {
+                first: info.range.start,
+                positions0,
+                volumes0: &particles.volumes0[info.range.clone()],
+                neighbours,
+                kernel,
+            });
+        }
+        let corrected = config.formulation == Formulation::TotalLagrangianCorrected;
+        let (bonds, correction) = build_bonds(&body_bonds, corrected);
+        drop(body_bonds);
+        let prescribed = model
+            .boundaries
+            .iter()
+            .map(|b| {
+                let info = bodies
+                    .get(b.body)
+                    .ok_or_else(|| SetupError::InvalidBoundary {
+                        boundary: b.name.clone(),
+                        message: format!("body #{} does not exist", b.body),
+                    })?;
+                let n = info.range.len();
+                if let Some(&bad) = b.particles.iter().find(|&&i| i >= n) {
+                    return Err(SetupError::InvalidBoundary {
+                        boundary: b.name.clone(),
+                        message: format!(
+                            "particle {bad} is outside body `{}` ({n} particles)",
+                            info.name
+                        ),
+                    });
+                }
+                if !b.velocity.iter().all(|x| x.is_finite()) {
+                    return Err(SetupError::InvalidBoundary {
+                        boundary: b.name.clone(),
+                        message: "velocity is not finite".into(),
+                    });
+                }
+                Ok(PrescribedSet {
+                    particles: b.particles.iter().map(|i| info.range.start + i).collect(),
+                    velocity: b.velocity,
+                    components: b.components,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut sim = Self {
+            config,
+            materials: model.materials.iter().map(|m| m.model).collect(),
+            bodies,
+            particles,
+            bonds,
+            prescribed,
+            correction,
+            time: 0.0,
+            steps_done: 0,
+            next_dt: 0.0,
+        };
+        // Prescribed velocities hold from t = 0.
+        sim.impose_velocities();
+        Ok(sim)
+    }
+
+    /// Advances to the next time level (the first call evaluates the state at t = 0 and takes
+    /// the half kick of R 5.66). Returns an error naming step, particle and field if a value
+    /// becomes non-finite or a particle inverts; the state then stays inspectable.
+    pub fn step(&mut self) -> Result<StepReport, StepError> {
+        let dt = self.next_dt;
+        if self.steps_done > 0 {
+            // Drift: u^n = u^{n−1} + Δt^n v^{n−½} (R 5.67).
+            self.particles
+                .displacements
+                .par_iter_mut()
+                .zip(self.particles.velocities.par_iter())
+                .for_each(|(u, v)| *u += v * dt);
+            self.time += dt;
+        }
+        let step = self.steps_done;
+        gather_kinematics(&self.bonds, &mut self.particles);
+        for info in &self.bodies {
+            let constitutive = ConstitutiveStep {
+                range: info.range.clone(),
+                density0: info.density0,
+                dt,
+            };
+            match (&self.materials[info.material], self.config.stress_update) {
+                (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => {
+                    update_jaumann_rate(m, &constitutive, &mut self.particles)
+                }
+                (MaterialModel::LinearElastic(m), StressUpdate::GreenLagrange) => {
+                    update_green_lagrange(m, &constitutive, &mut self.particles)
+                }
+            }
+        }
+        if let Some(i) = self
+            .particles
+            .jacobian
+            .par_iter()
+            .position_first(|j| j.is_nan() || *j <= 0.0)
+        {
+            let jacobian = self.particles.jacobian[i];
+            if !jacobian.is_finite() {
+                // A non-finite F comes from non-finite kinematics: name the root cause.
+                return Err(self.non_finite(step, i));
+            }
+            let (body, particle) = self.locate(i);
+            return Err(StepError::Inverted {
+                step,
+                time: self.time,
+                body,
+                particle,
+                jacobian,
+            });
+        }
+        gather_accelerations(&self.bonds, &mut self.particles);
+        for set in &self.prescribed {
+            for &i in &set.particles {
+                for (c, imposed) in set.components.iter().enumerate() {
+                    if *imposed {
+                        self.particles.accelerations[i][c] = 0.0;
+                    }
+                }
+            }
+        }
+        let (next_dt, limiting_particle) = self.stable_dt();
+        // Kick: v^{n+½} = v^{n−½} + ½(Δt^n + Δt^{n+1}) a^n (R 5.64–5.66; Δt^0 = 0 gives the
+        // first half step).
+        let kick = 0.5 * (dt + next_dt);
+        self.particles
+            .velocities
+            .par_iter_mut()
+            .zip(self.particles.accelerations.par_iter())
+            .for_each(|(v, a)| *v += a * kick);
+        self.impose_velocities();
+        self.next_dt = next_dt;
+        self.steps_done += 1;
+        self.check_finite(step)?;
+        Ok(StepReport {
+            step,
+            time: self.time,
+            next_dt,
+            limiting_particle,
+        })
+    }
+
+    /// Runs until `end_time`, calling `observe` after every step (including the first one,
+    /// at t = 0).
+    pub fn run(&mut self, mut observe: impl FnMut(&Self, &StepReport)) -> Result<(), StepError> {
+        while !self.finished() {
+            let report = self.step()?;
+            observe(self, &report);
+        }
+        Ok(())
+    }
+
+    /// True once the state at `end_time` has been computed.
+    pub fn finished(&self) -> bool {
+        self.steps_done > 0 && self.next_dt <= 0.0
+    }
+
+    /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70),
+    /// clipped so the run ends exactly at `end_time`.
+    fn stable_dt(&self) -> (f64, usize) {
+        let mut best = (f64::INFINITY, 0usize);
+        for info in &self.bodies {
+            let r = info.range.clone();
+            let local = self.particles.velocities[r.clone()]
+                .par_iter()
+                .zip(self.particles.jacobian[r.clone()].par_iter())
+                .enumerate()
+                .map(|(k, (v, j))| {
+                    let c = info.sound_speed0 * j.max(0.0).sqrt();
+                    (info.smoothing_length / (c + v.norm()), r.start + k)
+                })
+                .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index);
+            best = min_by_value_then_index(best, local);
+        }
+        let remaining = self.config.end_time - self.time;
+        let dt = self.config.cfl * best.0;
+        // Avoid a sliver of a final step: stretch into the end when within 1 % of it.
+        let dt = if remaining <= dt * 1.01 {
+            remaining.max(0.0)
+        } else {
+            dt
+        };
+        (dt, best.1)
+    }
+
+    fn impose_velocities(&mut self) {
+        for set in &self.prescribed {
+            for &i in &set.particles {
+                for (c, imposed) in set.components.iter().enumerate() {
+                    if *imposed {
+                        self.particles.velocities[i][c] = set.velocity[c];
+                    }
+                }
+            }
+        }
+    }
+
+    fn check_finite(&self, step: u64) -> Result<(), StepError> {
+        let p = &self.particles;
+        let bad_velocity = p
+            .velocities
+            .par_iter()
+            .position_first(|v| !v.iter().all(|x| x.is_finite()));
+        match bad_velocity {
+            None => Ok(()),
+            Some(first_bad) => Err(self.non_finite(step, first_bad)),
+        }
+    }
+
+    /// The error for a non-finite state first seen at particle `seen`: names the first
+    /// particle with a non-finite stress, else displacement, else velocity, since a bad stress
+    /// poisons its neighbours' accelerations and a bad velocity its neighbours' F.
+    fn non_finite(&self, step: u64, seen: usize) -> StepError {
+        let p = &self.particles;
+        let finite3 = |s: &tlsph_math::Tensor3| s.iter().all(|x| x.is_finite());
+        let finite = |v: &Vector<D>| v.iter().all(|x| x.is_finite());
+        let (i, field) = if let Some(i) = p.stress.iter().position(|s| !finite3(s)) {
+            (i, "stress")
+        } else if let Some(i) = p.displacements.iter().position(|u| !finite(u)) {
+            (i, "displacement")
+        } else if let Some(i) = p.velocities.iter().position(|v| !finite(v)) {
+            (i, "velocity")
+        } else {
+            (seen, "deformation gradient")
+        };
+        let (body, particle) = self.locate(i);
+        StepError::NonFinite {
+            step,
+            time: self.time,
+            body,
+            particle,
+            field,
+        }
+    }
+
+    /// (body name, local index) of a global particle index.
+    fn locate(&self, i: usize) -> (String, usize) {
+        let info = self
+            .bodies
+            .iter()
+            .find(|b| b.range.contains(&i))
+            .expect("every particle belongs to a body");
+        (info.name.clone(), i - info.range.start)
+    }
+
+    /// Overwrites the displacements u (one per particle). Before the first step this sets an
+    /// initial displacement field; later it drives the kinematics directly (tests, coupling).
+    /// The next step evaluates F from these displacements after its drift.
+    pub fn set_displacements(&mut self, displacements: &[Vector<D>]) {
+        assert_eq!(
+            displacements.len(),
+            self.n_particles(),
+            "one displacement per particle"
+        );
+        self.particles.displacements.copy_from_slice(displacements);
+    }
+
+    /// Overwrites the staggered velocities v^{n+½} that the next drift uses, and clears the
+    /// stored accelerations so [`Simulation::velocity`] reports exactly these values.
+    pub fn set_velocities(&mut self, velocities: &[Vector<D>]) {
+        assert_eq!(
+            velocities.len(),
+            self.n_particles(),
+            "one velocity per particle"
+        );
+        self.particles.velocities.copy_from_slice(velocities);
+        self.particles.accelerations.fill(Vector::zeros());
+        self.impose_velocities();
+    }
+
+    /// Step size the next call to [`Simulation::step`] will take (0 before the first step).
+    pub fn next_dt(&self) -> f64 {
+        self.next_dt
+    }
+
+    /// Material velocity gradients Ḟ^{n−½} of the last step.
+    pub fn deformation_rates(&self) -> &[tlsph_math::Tensor<D>] {
+        &self.particles.deformation_rate
+    }
+
+    /// Current simulated time [s].
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps completed.
+    pub fn steps_done(&self) -> u64 {
+        self.steps_done
+    }
+
+    /// Total number of particles.
+    pub fn n_particles(&self) -> usize {
+        self.particles.len()
+    }
+
+    /// Configuration of the run.
+    pub fn config(&self) -> &SimulationConfig {
+        &self.config
+    }
+
+    /// Bodies in order.
+    pub fn bodies(&self) -> &[BodyInfo] {
+        &self.bodies
+    }
+
+    /// Reference bonds.
+    pub fn bonds(&self) -> &Bonds<D> {
+        &self.bonds
+    }
+
+    /// What the gradient correction regularised at setup.
+    pub fn correction_report(&self) -> &CorrectionReport {
+        &self.correction
+    }
+
+    /// Reference positions X.
+    pub fn positions0(&self) -> &[Vector<D>] {
+        &self.particles.positions0
+    }
+
+    /// Displacements u^n.
+    pub fn displacements(&self) -> &[Vector<D>] {
+        &self.particles.displacements
+    }
+
+    /// Masses.
+    pub fn masses(&self) -> &[f64] {
+        &self.particles.masses
+    }
+
+    /// Cauchy stresses σ^n.
+    pub fn stresses(&self) -> &[tlsph_math::Tensor3] {
+        &self.particles.stress
+    }
+
+    /// Deformation gradients F^n.
+    pub fn deformation_gradients(&self) -> &[tlsph_math::Tensor<D>] {
+        &self.particles.deformation_gradient
+    }
+
+    /// Specific internal energies e^n [J/kg].
+    pub fn internal_energies(&self) -> &[f64] {
+        &self.particles.internal_energy
+    }
+
+    /// Velocity of particle `i` at the current time t^n: v^n = v^{n+½} − ½Δt^{n+1} a^n,
+    /// consistent with the kick of R 5.64 (and exact at t = 0).
+    #[inline]
+    pub fn velocity(&self, i: usize) -> Vector<D> {
+        self.particles.velocities[i] - self.particles.accelerations[i] * (0.5 * self.next_dt)
+    }
+
+    /// Samples a field at particle `i` (global index) at the current time.
+    pub fn sample(&self, field: ParticleField, i: usize) -> f64 {
+        let p = &self.particles;
+        let component = |v: Vector<D>, k: usize| if k < D { v[k] } else { 0.0 };
+        match field {
+            ParticleField::Stress(a, b) => p.stress[i][(a, b)],
+            ParticleField::Pressure => -p.stress[i].trace() / 3.0,
+            ParticleField::VonMises => von_mises(&p.stress[i]),
+            ParticleField::Velocity(k) => component(self.velocity(i), k),
+            ParticleField::Displacement(k) => component(p.displacements[i], k),
+            ParticleField::Position(k) => component(p.positions0[i] + p.displacements[i], k),
+            ParticleField::Density => {
+                let info = &self.bodies[self.body_of(i)];
+                info.density0 / p.jacobian[i]
+            }
+            ParticleField::Jacobian => p.jacobian[i],
+            ParticleField::InternalEnergy => p.internal_energy[i],
+        }
+    }
+
+    /// Index of the body that owns global particle `i`.
+    pub fn body_of(&self, i: usize) -> usize {
+        self.bodies
+            .iter()
+            .position(|b| b.range.contains(&i))
+            .expect("every particle belongs to a body")
+    }
+
+    /// Energies and momenta at the current time (sequential sums: thread-count independent).
+    pub fn diagnostics(&self) -> Diagnostics {
+        let p = &self.particles;
+        let mut d = Diagnostics {
+            time: self.time,
+            ..Diagnostics::default()
+        };
+        for i in 0..p.len() {
+            let m = p.masses[i];
+            let v = vector_to_3d(&self.velocity(i));
+            let x: Vector3 = vector_to_3d(&(p.positions0[i] + p.displacements[i]));
+            d.kinetic += 0.5 * m * v.norm_squared();
+            d.internal += m * p.internal_energy[i];
+            d.linear_momentum += v * m;
+            d.angular_momentum += x.cross(&v) * m;
+        }
+        d
+    }
+}
+
+fn min_by_value_then_index(a: (f64, usize), b: (f64, usize)) -> (f64, usize) {
+    // Total order (value, index) makes the reduction independent of how rayon splits it.
+    match a.0.total_cmp(&b.0) {
+        std::cmp::Ordering::Less => a,
+        std::cmp::Ordering::Greater => b,
+        std::cmp::Ordering::Equal => {
+            if a.1 <= b.1 {
+                a
+            } else {
+                b
+            }
+        }
+    }
+}
+
+fn validate_config(c: &SimulationConfig) -> Result<(), SetupError> {
+    let check = |field: &'static str, ok: bool, message: String| {
+        if ok {
+            Ok(())
+        } else {
+            Err(SetupError::InvalidConfig { field, message })
+        }
+    };
+    check(
+        "smoothing_factor",
+        c.smoothing_factor.is_finite() && c.smoothing_factor > 0.0,
+        format!("must be > 0, got {}", c.smoothing_factor),
+    )?;
+    check(
+        "cfl",
+        c.cfl.is_finite() && c.cfl > 0.0 && c.cfl <= 1.0,
+        format!("must be in (0, 1], got {}", c.cfl),
+    )?;
+    check(
+        "end_time",
+        c.end_time.is_finite() && c.end_time > 0.0,
+        format!("must be > 0, got {}", c.end_time),
+    )
+}
+
+fn validate_body<const D: usize>(
+    body: &crate::model::BodyDescription<D>,
+    density: f64,
+) -> Result<(), SetupError> {
+    let fail = |message: String| {
+        Err(SetupError::InvalidBody {
+            body: body.name.clone(),
+            message,
+        })
+    };
+    let n = body.positions.len();
+    if n == 0 {
+        return fail("has no particles".into());
+    }
+    if body.volumes.len() != n || body.velocities.len() != n {
+        return fail(format!(
+            "{n} positions but {} volumes and {} velocities",
+            body.volumes.len(),
+            body.velocities.len()
+        ));
+    }
+    if !(body.spacing.is_finite() && body.spacing > 0.0) {
+        return fail(format!("spacing must be > 0, got {}", body.spacing));
+    }
+    if !(density.is_finite() && density > 0.0) {
+        return fail(format!("material density must be > 0, got {density}"));
+    }
+    if let Some(i) = body
+        .volumes
+        .iter()
+        .position(|v| !(v.is_finite() && *v > 0.0))
+    {
+        return fail(format!("particle {i} has volume {}", body.volumes[i]));
+    }
+    if let Some(i) = body
+        .velocities
+        .iter()
+        .position(|v| !v.iter().all(|x| x.is_finite()))
+    {
+        return fail(format!("particle {i} has a non-finite velocity"));
+    }
+    Ok(())
+}

@@ -1,0 +1,153 @@
+//! The per-step hot loops: gathers over reference bonds and the constitutive update.
+//! Every loop is a gather per particle (rayon over particles, no atomics, no allocation),
+//! so results are bit-identical for any thread count.
+
+use crate::bonds::Bonds;
+use crate::particles::Particles;
+use rayon::prelude::*;
+use std::ops::Range;
+use tlsph_materials::LinearElastic;
+use tlsph_math::{
+    embed_with_identity, embed_with_zeros, inverse3, outer, project, sym, Tensor, Tensor3,
+};
+
+/// Minimum particles per rayon task: below this, splitting costs more than it saves.
+const MIN_PARTICLES_PER_TASK: usize = 256;
+
+/// F^n = I + Σ_J V0_J (u_J − u_I) ⊗ G̃_IJ and Ḟ^{n−½} = Σ_J V0_J (v_J − v_I) ⊗ G̃_IJ
+/// (R 4.7–4.8, 4.24; numerics.md §4.2–4.3), gathered per particle.
+pub(crate) fn gather_kinematics<const D: usize>(bonds: &Bonds<D>, p: &mut Particles<D>) {
+    let u = &p.displacements;
+    let v = &p.velocities;
+    p.deformation_gradient
+        .par_iter_mut()
+        .zip(p.deformation_rate.par_iter_mut())
+        .enumerate()
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(i, (f, f_dot))| {
+            let (ui, vi) = (u[i], v[i]);
+            let mut grad_u = Tensor::<D>::zeros();
+            let mut grad_v = Tensor::<D>::zeros();
+            for b in bonds.range(i) {
+                let j = bonds.neighbours[b] as usize;
+                let g = bonds.gradient[b];
+                grad_u += outer(&(u[j] - ui), &g);
+                grad_v += outer(&(v[j] - vi), &g);
+            }
+            *f = Tensor::<D>::identity() + grad_u;
+            *f_dot = grad_v;
+        });
+}
+
+/// m_I a_I = V0_I [P_I Σ_J V0_J G̃_IJ − Σ_J P_J V0_J G̃_JI] (numerics.md §4.5 form (c);
+/// reduces to the symmetric sum form (a) of R 4.26 for uncorrected gradients).
+/// Pair terms are equal and opposite, so linear momentum is conserved exactly.
+pub(crate) fn gather_accelerations<const D: usize>(bonds: &Bonds<D>, p: &mut Particles<D>) {
+    let pk1 = &p.pk1;
+    let volumes0 = &p.volumes0;
+    let masses = &p.masses;
+    p.accelerations
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(i, a)| {
+            let mut force = pk1[i] * bonds.gradient_sum[i];
+            for b in bonds.range(i) {
+                let j = bonds.neighbours[b] as usize;
+                force -= pk1[j] * bonds.reverse_gradient[b];
+            }
+            *a = force * (volumes0[i] / masses[i]);
+        });
+}
+
+/// Inputs of one constitutive update over a body's particle range.
+pub(crate) struct ConstitutiveStep {
+    /// Particle range of the body.
+    pub range: Range<usize>,
+    /// Reference density ρ0 of the body's material.
+    pub density0: f64,
+    /// Δt^n: time from the previous stress state to this one (0 on the first step).
+    pub dt: f64,
+}
+
+/// Cauchy stress with the Jaumann rate (Algorithms 2–3, R 5.26–5.32), for one body.
+///
+/// Rates are evaluated at n−½ with F^{n−½} = F^n − ½Δt Ḟ (exact because F is linear in u and
+/// u^{n−½} = u^n − ½Δt v^{n−½}, R 5.2): L = Ḟ F^{−1}, D = sym L, W = skew L. Internal energy:
+/// Δe = Δt σ^{n−½}:D / ρ^{n−½} with σ^{n−½} = ½(σ^{n−1} + σ^n) (R 4.12, 4.28).
+pub(crate) fn update_jaumann_rate<const D: usize>(
+    material: &LinearElastic,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+) {
+    let dt = step.dt;
+    let rho0 = step.density0;
+    let r = step.range.clone();
+    let f_all = &p.deformation_gradient[r.clone()];
+    let f_dot_all = &p.deformation_rate[r.clone()];
+    p.stress[r.clone()]
+        .par_iter_mut()
+        .zip(p.pk1[r.clone()].par_iter_mut())
+        .zip(p.jacobian[r.clone()].par_iter_mut())
+        .zip(p.internal_energy[r].par_iter_mut())
+        .enumerate()
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(k, (((sigma, pk1), jac), energy))| {
+            let f = embed_with_identity(&f_all[k]);
+            let f_dot = embed_with_zeros(&f_dot_all[k]);
+            let f_half = f - f_dot * (0.5 * dt);
+            let (l, j_half) = match inverse3(&f_half) {
+                Some(inv) => (f_dot * inv, f_half.determinant()),
+                None => (Tensor3::zeros(), f64::NAN),
+            };
+            let d = sym(&l);
+            let w = (l - l.transpose()) * 0.5;
+            let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
+            *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
+            *sigma = sigma_new;
+            let j = f.determinant();
+            *jac = j;
+            // P = J σ F⁻ᵀ (R 5.32, numerics.md §4.4); a singular F leaves NaN for the check.
+            *pk1 = match inverse3(&f) {
+                Some(f_inv) => project(&(sigma_new * f_inv.transpose() * j)),
+                None => Tensor::<D>::from_element(f64::NAN),
+            };
+        });
+}
+
+/// St Venant–Kirchhoff stress from the Green–Lagrange strain (Algorithm 1, R 5.9–5.13), for
+/// one body. S^n = C:E^n with E = ½(FᵀF − I); P = F S; σ = J⁻¹ F S Fᵀ.
+/// Internal energy increment ½(S^{n−1} + S^n):(E^n − E^{n−1}) / ρ0 with F^{n−1} = F^n − Δt Ḟ,
+/// which for this quadratic energy equals the exact change of strain energy.
+pub(crate) fn update_green_lagrange<const D: usize>(
+    material: &LinearElastic,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+) {
+    let dt = step.dt;
+    let rho0 = step.density0;
+    let r = step.range.clone();
+    let f_all = &p.deformation_gradient[r.clone()];
+    let f_dot_all = &p.deformation_rate[r.clone()];
+    let green_lagrange = |f: &Tensor3| (f.transpose() * f - Tensor3::identity()) * 0.5;
+    p.stress[r.clone()]
+        .par_iter_mut()
+        .zip(p.pk1[r.clone()].par_iter_mut())
+        .zip(p.jacobian[r.clone()].par_iter_mut())
+        .zip(p.internal_energy[r].par_iter_mut())
+        .enumerate()
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(k, (((sigma, pk1), jac), energy))| {
+            let f = embed_with_identity(&f_all[k]);
+            let f_prev = f - embed_with_zeros(&f_dot_all[k]) * dt;
+            let e = green_lagrange(&f);
+            let e_prev = green_lagrange(&f_prev);
+            let s = material.second_piola_kirchhoff(&e);
+            let s_prev = material.second_piola_kirchhoff(&e_prev);
+            *energy += 0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
+            let j = f.determinant();
+            *jac = j;
+            *pk1 = project(&(f * s));
+            *sigma = f * s * f.transpose() / j;
+        });
+}
