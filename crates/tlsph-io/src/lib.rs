@@ -1,0 +1,16 @@
+//! Scene files, run folders, CSV histories and PNG plots: the only library crate that touches
+//! files. Scene files are documented for users in `docs/scene-format.md`.
+
+mod geometry;
+pub mod plot;
+mod run;
+mod scene;
+mod scene_file;
+
+pub use geometry::{fill_shape, Shape};
+pub use run::{
+    run_model, run_scene, run_scene_to_dir, write_csv, ProbeHistory, Progress, RunError, RunRecord,
+};
+pub use scene::{
+    load_scene, parse_scene, DimensionModel, OutputSpec, ProbeSpec, Scene, SceneError,
+};

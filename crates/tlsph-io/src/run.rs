@@ -1,0 +1,341 @@
+//! Running a scene: drives the solver to the end time, samples probes and diagnostics, and
+//! writes a run folder. Files are written into `<dir>.partial/` and the folder is renamed into
+//! place at the end, so an existing result is never left half-overwritten.
+
+use crate::scene::{DimensionModel, ProbeSpec, Scene};
+use std::fmt;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tlsph_solver::{Diagnostics, Model, ParticleField, SetupError, Simulation, StepError};
+
+/// Samples of one probe.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeHistory {
+    /// Probe name.
+    pub name: String,
+    /// Column order of `values`.
+    pub fields: Vec<ParticleField>,
+    /// Sample times [s].
+    pub times: Vec<f64>,
+    /// One row per sample, one value per field.
+    pub values: Vec<Vec<f64>>,
+}
+
+impl ProbeHistory {
+    /// The time series of one field, or `None` if the probe does not record it.
+    pub fn series(&self, field: ParticleField) -> Option<Vec<f64>> {
+        let k = self.fields.iter().position(|f| *f == field)?;
+        Some(self.values.iter().map(|row| row[k]).collect())
+    }
+}
+
+/// Everything a run produced, in memory.
+#[derive(Debug, Clone)]
+pub struct RunRecord {
+    /// Probe histories, in scene order.
+    pub probes: Vec<ProbeHistory>,
+    /// Energies and momenta at the output interval (first at t = 0, last at the final time).
+    pub diagnostics: Vec<Diagnostics>,
+    /// Steps taken.
+    pub steps: u64,
+    /// Particle count.
+    pub particles: usize,
+    /// Wall time of the time loop [s] (setup excluded).
+    pub wall_s: f64,
+    /// Why the run stopped early, if it did.
+    pub failure: Option<StepError>,
+}
+
+impl RunRecord {
+    /// Particle-steps per second of the time loop.
+    pub fn particle_steps_per_s(&self) -> f64 {
+        if self.wall_s > 0.0 {
+            self.particles as f64 * self.steps as f64 / self.wall_s
+        } else {
+            0.0
+        }
+    }
+
+    /// The probe called `name`.
+    pub fn probe(&self, name: &str) -> Option<&ProbeHistory> {
+        self.probes.iter().find(|p| p.name == name)
+    }
+}
+
+/// A run that could not start or whose output could not be written.
+#[derive(Debug)]
+pub enum RunError {
+    /// The solver rejected the model.
+    Setup(SetupError),
+    /// A file operation failed.
+    Io {
+        /// Path involved.
+        path: PathBuf,
+        /// What failed.
+        message: String,
+    },
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::Setup(e) => write!(f, "cannot set up the simulation: {e}"),
+            RunError::Io { path, message } => write!(f, "{}: {message}", path.display()),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// Progress callback: called with (simulated time, end time) after every step.
+pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
+
+/// Runs a model in memory, sampling `probes` at their intervals and diagnostics every
+/// `energy_interval`. Returns the record and the final simulation state. A step failure ends
+/// the run early and is reported in `RunRecord::failure`; everything sampled before is kept.
+pub fn run_model<const D: usize>(
+    model: Model<D>,
+    probes: &[ProbeSpec],
+    energy_interval: f64,
+    progress: Progress<'_>,
+) -> Result<(RunRecord, Simulation<D>), SetupError> {
+    let mut sim = Simulation::new(model)?;
+    let end_time = sim.config().end_time;
+    let globals: Vec<usize> = probes
+        .iter()
+        .map(|p| sim.bodies()[p.body].range.start + p.particle)
+        .collect();
+    let mut histories: Vec<ProbeHistory> = probes
+        .iter()
+        .map(|p| ProbeHistory {
+            name: p.name.clone(),
+            fields: p.fields.clone(),
+            times: Vec::new(),
+            values: Vec::new(),
+        })
+        .collect();
+    let mut next_probe = vec![0.0f64; probes.len()];
+    let mut next_energy = 0.0f64;
+    let mut diagnostics = Vec::new();
+    let start = Instant::now();
+    let mut failure = None;
+    while !sim.finished() {
+        if let Err(e) = sim.step() {
+            failure = Some(e);
+            break;
+        }
+        let t = sim.time();
+        let last = sim.finished();
+        for (k, p) in probes.iter().enumerate() {
+            if t >= next_probe[k] || last {
+                let h = &mut histories[k];
+                h.times.push(t);
+                h.values.push(
+                    p.fields
+                        .iter()
+                        .map(|f| sim.sample(*f, globals[k]))
+                        .collect(),
+                );
+                next_probe[k] = next_multiple(t, p.interval);
+            }
+        }
+        if t >= next_energy || last {
+            diagnostics.push(sim.diagnostics());
+            next_energy = next_multiple(t, energy_interval);
+        }
+        progress(t, end_time);
+    }
+    let record = RunRecord {
+        probes: histories,
+        diagnostics,
+        steps: sim.steps_done(),
+        particles: sim.n_particles(),
+        wall_s: start.elapsed().as_secs_f64(),
+        failure,
+    };
+    Ok((record, sim))
+}
+
+/// First multiple of `interval` strictly after `t` (robust to round-off at the multiple).
+fn next_multiple(t: f64, interval: f64) -> f64 {
+    let k = (t / interval * (1.0 + 1e-12)).floor() + 1.0;
+    k * interval
+}
+
+/// Runs a scene in memory (no files).
+pub fn run_scene(scene: &Scene, progress: Progress<'_>) -> Result<RunRecord, SetupError> {
+    let interval = scene.output.energy_interval;
+    match &scene.model {
+        DimensionModel::One(m) => {
+            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+        }
+        DimensionModel::Two(m) => {
+            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+        }
+        DimensionModel::Three(m) => {
+            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+        }
+    }
+}
+
+/// Runs a scene and writes its run folder `dir` (see `docs/scene-format.md`, "Outputs").
+///
+/// Setup errors leave the file system untouched. A run that stops on a step error still
+/// writes everything recorded so far, with `status = "failed"` and the reason in
+/// `summary.toml`.
+pub fn run_scene_to_dir(
+    scene: &Scene,
+    dir: &Path,
+    progress: Progress<'_>,
+) -> Result<RunRecord, RunError> {
+    check_replaceable(dir)?;
+    let record = run_scene(scene, progress).map_err(RunError::Setup)?;
+    write_run_folder(scene, &record, dir)?;
+    Ok(record)
+}
+
+/// Refuses to replace a folder that is not a previous run (no `summary.toml`) and not empty.
+fn check_replaceable(dir: &Path) -> Result<(), RunError> {
+    if !dir.exists() {
+        return Ok(());
+    }
+    let io = |e: std::io::Error| RunError::Io {
+        path: dir.to_path_buf(),
+        message: e.to_string(),
+    };
+    if !dir.is_dir() {
+        return Err(RunError::Io {
+            path: dir.to_path_buf(),
+            message: "exists and is not a folder; choose another output dir".into(),
+        });
+    }
+    let empty = fs::read_dir(dir).map_err(io)?.next().is_none();
+    if empty || dir.join("summary.toml").is_file() {
+        Ok(())
+    } else {
+        Err(RunError::Io {
+            path: dir.to_path_buf(),
+            message: "exists and is not a previous run folder (no summary.toml); refusing to overwrite it".into(),
+        })
+    }
+}
+
+fn write_run_folder(scene: &Scene, record: &RunRecord, dir: &Path) -> Result<(), RunError> {
+    let partial = sibling(dir, "partial");
+    let io = |path: &Path, e: std::io::Error| RunError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    if partial.exists() {
+        fs::remove_dir_all(&partial).map_err(|e| io(&partial, e))?;
+    }
+    fs::create_dir_all(partial.join("probes")).map_err(|e| io(&partial, e))?;
+    for probe in &record.probes {
+        let mut header = vec!["time".to_string()];
+        header.extend(probe.fields.iter().map(|f| f.to_string()));
+        let rows = probe.times.iter().zip(&probe.values).map(|(t, row)| {
+            let mut r = vec![*t];
+            r.extend(row);
+            r
+        });
+        write_csv(
+            &partial.join("probes").join(format!("{}.csv", probe.name)),
+            &header,
+            rows,
+        )?;
+    }
+    let energy_rows = record
+        .diagnostics
+        .iter()
+        .map(|d| vec![d.time, d.kinetic, d.internal, d.total_energy()]);
+    write_csv(
+        &partial.join("energy.csv"),
+        &["time", "kinetic", "internal", "total"].map(String::from),
+        energy_rows,
+    )?;
+    let momentum_rows = record.diagnostics.iter().map(|d| {
+        let (p, l) = (d.linear_momentum, d.angular_momentum);
+        vec![d.time, p.x, p.y, p.z, l.x, l.y, l.z]
+    });
+    write_csv(
+        &partial.join("momentum.csv"),
+        &[
+            "time",
+            "momentum_x",
+            "momentum_y",
+            "momentum_z",
+            "angular_momentum_x",
+            "angular_momentum_y",
+            "angular_momentum_z",
+        ]
+        .map(String::from),
+        momentum_rows,
+    )?;
+    let (status, message) = match &record.failure {
+        None => ("complete", String::new()),
+        Some(e) => ("failed", e.to_string()),
+    };
+    let summary = format!(
+        "# Written by tlsph at the end of a run.\nstatus = \"{status}\"\nmessage = {message:?}\nscene = {origin:?}\nparticles = {}\nsteps = {}\nend_time = {}\nwall_s = {}\nparticle_steps_per_s = {}\n",
+        record.particles,
+        record.steps,
+        scene.end_time(),
+        record.wall_s,
+        record.particle_steps_per_s(),
+        origin = scene.origin,
+    );
+    let summary_path = partial.join("summary.toml");
+    fs::write(&summary_path, summary).map_err(|e| io(&summary_path, e))?;
+    // Swap the finished folder into place; the old result survives until the new one is there.
+    let old = sibling(dir, "old");
+    if dir.exists() {
+        if old.exists() {
+            fs::remove_dir_all(&old).map_err(|e| io(&old, e))?;
+        }
+        fs::rename(dir, &old).map_err(|e| io(dir, e))?;
+    }
+    fs::rename(&partial, dir).map_err(|e| io(dir, e))?;
+    if old.exists() {
+        fs::remove_dir_all(&old).map_err(|e| io(&old, e))?;
+    }
+    Ok(())
+}
+
+/// `<dir>.<suffix>` next to `dir`.
+fn sibling(dir: &Path, suffix: &str) -> PathBuf {
+    let mut name = dir
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_else(|| "out".into());
+    name.push(format!(".{suffix}"));
+    dir.with_file_name(name)
+}
+
+/// Writes a CSV file (header + rows of numbers) through a temporary file and a rename.
+pub fn write_csv(
+    path: &Path,
+    header: &[String],
+    rows: impl IntoIterator<Item = Vec<f64>>,
+) -> Result<(), RunError> {
+    let io = |e: std::io::Error| RunError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    if let Some(parent) = path.parent() {
+        fs::create_dir_all(parent).map_err(io)?;
+    }
+    let tmp = path.with_extension("csv.tmp");
+    {
+        let file = fs::File::create(&tmp).map_err(io)?;
+        let mut w = std::io::BufWriter::new(file);
+        writeln!(w, "{}", header.join(",")).map_err(io)?;
+        for row in rows {
+            let line: Vec<String> = row.iter().map(|x| format!("{x:e}")).collect();
+            writeln!(w, "{}", line.join(",")).map_err(io)?;
+        }
+        w.flush().map_err(io)?;
+    }
+    fs::rename(&tmp, path).map_err(io)
+}

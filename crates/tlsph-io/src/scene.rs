@@ -1,0 +1,848 @@
+//! Reading a scene: parse the TOML, check every value, build particles from shapes, and turn
+//! it into a solver `Model`. Every error names the file, line, column and field.
+
+use crate::geometry::{fill_shape, Shape};
+use crate::scene_file::{BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable};
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use tlsph_kernels::KernelKind;
+use tlsph_materials::LinearElastic;
+use tlsph_math::{Tensor, Vector};
+use tlsph_solver::{
+    BodyDescription, BoundaryDescription, Formulation, MaterialDescription, MaterialModel, Model,
+    ParticleField, SimulationConfig, StressUpdate,
+};
+use toml::Spanned;
+
+/// A scene that cannot be run, located in its file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError {
+    /// Scene file (or `<string>` for scenes given as text).
+    pub file: String,
+    /// 1-based line of the offending value, when known.
+    pub line: Option<usize>,
+    /// 1-based column of the offending value, when known.
+    pub column: Option<usize>,
+    /// Dotted path of the field, e.g. `material[plate].poisson_ratio`.
+    pub field: String,
+    /// What is wrong and what is expected.
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+            if let Some(column) = self.column {
+                write!(f, ":{column}")?;
+            }
+        }
+        if self.field.is_empty() {
+            write!(f, ": {}", self.message)
+        } else {
+            write!(f, ": {}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// A probe: fields sampled at the particle nearest to a point of the reference configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeSpec {
+    /// Name; the CSV is `probes/<name>.csv`.
+    pub name: String,
+    /// Body index.
+    pub body: usize,
+    /// Particle index within the body.
+    pub particle: usize,
+    /// Sampled fields, in column order.
+    pub fields: Vec<ParticleField>,
+    /// Sampling interval [s]; a sample is taken at the first step at or after each multiple.
+    pub interval: f64,
+}
+
+/// Where and how often whole-model histories are written.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputSpec {
+    /// Output folder (relative paths are relative to the working directory).
+    pub dir: PathBuf,
+    /// Interval of `energy.csv` / `momentum.csv` rows [s].
+    pub energy_interval: f64,
+}
+
+/// A solver model in the scene's dimension.
+#[derive(Debug, Clone)]
+pub enum DimensionModel {
+    /// 1D (uniaxial strain).
+    One(Model<1>),
+    /// 2D (plane strain).
+    Two(Model<2>),
+    /// 3D.
+    Three(Model<3>),
+}
+
+/// A checked scene, ready to run.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Where it came from (for messages).
+    pub origin: String,
+    /// The model for the solver.
+    pub model: DimensionModel,
+    /// Probes.
+    pub probes: Vec<ProbeSpec>,
+    /// Output settings.
+    pub output: OutputSpec,
+}
+
+impl Scene {
+    /// Spatial dimension.
+    pub fn dimension(&self) -> usize {
+        match self.model {
+            DimensionModel::One(_) => 1,
+            DimensionModel::Two(_) => 2,
+            DimensionModel::Three(_) => 3,
+        }
+    }
+
+    /// Total particle count.
+    pub fn n_particles(&self) -> usize {
+        match &self.model {
+            DimensionModel::One(m) => m.bodies.iter().map(|b| b.positions.len()).sum(),
+            DimensionModel::Two(m) => m.bodies.iter().map(|b| b.positions.len()).sum(),
+            DimensionModel::Three(m) => m.bodies.iter().map(|b| b.positions.len()).sum(),
+        }
+    }
+
+    /// Simulated end time [s].
+    pub fn end_time(&self) -> f64 {
+        match &self.model {
+            DimensionModel::One(m) => m.config.end_time,
+            DimensionModel::Two(m) => m.config.end_time,
+            DimensionModel::Three(m) => m.config.end_time,
+        }
+    }
+}
+
+/// Reads and checks a scene file.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        file: origin.clone(),
+        line: None,
+        column: None,
+        field: String::new(),
+        message: format!("cannot read the file: {e}"),
+    })?;
+    parse_scene(&text, &origin)
+}
+
+/// Parses and checks scene text; `origin` names it in errors.
+pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
+    let ctx = Context { text, origin };
+    let file: SceneFile = toml::from_str(text).map_err(|e| {
+        let (line, column) = match e.span() {
+            Some(span) => {
+                let (l, c) = ctx.line_col(span.start);
+                (Some(l), Some(c))
+            }
+            None => (None, None),
+        };
+        SceneError {
+            file: origin.to_string(),
+            line,
+            column,
+            field: String::new(),
+            message: e.message().trim().to_string(),
+        }
+    })?;
+    let dimension = *file.simulation.dimension.get_ref();
+    match dimension {
+        1 => build::<1>(&ctx, &file).map(|(m, p, o)| ctx.scene(DimensionModel::One(m), p, o)),
+        2 => build::<2>(&ctx, &file).map(|(m, p, o)| ctx.scene(DimensionModel::Two(m), p, o)),
+        3 => build::<3>(&ctx, &file).map(|(m, p, o)| ctx.scene(DimensionModel::Three(m), p, o)),
+        other => Err(ctx.error(
+            &file.simulation.dimension.span(),
+            "simulation.dimension",
+            format!("must be 1, 2 or 3, got {other}"),
+        )),
+    }
+}
+
+struct Context<'a> {
+    text: &'a str,
+    origin: &'a str,
+}
+
+impl Context<'_> {
+    fn line_col(&self, offset: usize) -> (usize, usize) {
+        let before = &self.text[..offset.min(self.text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+        (line, column)
+    }
+
+    fn error(&self, span: &Range<usize>, field: &str, message: String) -> SceneError {
+        let (line, column) = self.line_col(span.start);
+        SceneError {
+            file: self.origin.to_string(),
+            line: Some(line),
+            column: Some(column),
+            field: field.to_string(),
+            message,
+        }
+    }
+
+    fn scene(&self, model: DimensionModel, probes: Vec<ProbeSpec>, output: OutputSpec) -> Scene {
+        Scene {
+            origin: self.origin.to_string(),
+            model,
+            probes,
+            output,
+        }
+    }
+
+    fn positive(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let v = *value.get_ref();
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(
+                &value.span(),
+                field,
+                format!("must be a finite number > 0, got {v}"),
+            ))
+        }
+    }
+
+    fn vector<const D: usize>(
+        &self,
+        value: &Spanned<Vec<f64>>,
+        field: &str,
+    ) -> Result<Vector<D>, SceneError> {
+        self.components(value.get_ref(), &value.span(), field)
+    }
+
+    fn components<const D: usize>(
+        &self,
+        v: &[f64],
+        span: &Range<usize>,
+        field: &str,
+    ) -> Result<Vector<D>, SceneError> {
+        if v.len() != D {
+            return Err(self.error(
+                span,
+                field,
+                format!("needs {D} components in a {D}D scene, got {}", v.len()),
+            ));
+        }
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(self.error(span, field, "components must be finite numbers".into()));
+        }
+        Ok(Vector::<D>::from_iterator(v.iter().copied()))
+    }
+}
+
+type Built<const D: usize> = (Model<D>, Vec<ProbeSpec>, OutputSpec);
+
+fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>, SceneError> {
+    let sim = &file.simulation;
+    let formulation = match sim.formulation.get_ref().as_str() {
+        "total-lagrangian" => Formulation::TotalLagrangian,
+        "total-lagrangian-corrected" => Formulation::TotalLagrangianCorrected,
+        other => {
+            return Err(ctx.error(
+                &sim.formulation.span(),
+                "simulation.formulation",
+                format!("unknown formulation `{other}`; use `total-lagrangian` or `total-lagrangian-corrected`"),
+            ))
+        }
+    };
+    let stress_update = match sim
+        .stress_update
+        .as_ref()
+        .map(|s| (s.get_ref().as_str(), s.span()))
+    {
+        None | Some(("jaumann-rate", _)) => StressUpdate::JaumannRate,
+        Some(("green-lagrange", _)) => StressUpdate::GreenLagrange,
+        Some((other, span)) => {
+            return Err(ctx.error(
+                &span,
+                "simulation.stress_update",
+                format!("unknown stress update `{other}`; use `jaumann-rate` or `green-lagrange`"),
+            ))
+        }
+    };
+    let kernel: KernelKind =
+        sim.kernel
+            .get_ref()
+            .parse()
+            .map_err(|e: <KernelKind as std::str::FromStr>::Err| {
+                ctx.error(&sim.kernel.span(), "simulation.kernel", e.to_string())
+            })?;
+    let smoothing_factor = ctx.positive(&sim.smoothing_factor, "simulation.smoothing_factor")?;
+    let cfl = ctx.positive(&sim.cfl, "simulation.cfl")?;
+    if cfl > 1.0 {
+        return Err(ctx.error(
+            &sim.cfl.span(),
+            "simulation.cfl",
+            format!("must be at most 1, got {cfl}"),
+        ));
+    }
+    let end_time = ctx.positive(&sim.end_time, "simulation.end_time")?;
+    let config = SimulationConfig {
+        formulation,
+        stress_update,
+        kernel,
+        smoothing_factor,
+        cfl,
+        end_time,
+    };
+
+    let mut materials = Vec::with_capacity(file.material.len());
+    for m in &file.material {
+        let name = m.name.get_ref().clone();
+        if materials
+            .iter()
+            .any(|x: &MaterialDescription| x.name == name)
+        {
+            return Err(ctx.error(
+                &m.name.span(),
+                "material.name",
+                format!("material `{name}` is defined twice"),
+            ));
+        }
+        let field = |key: &str| format!("material[{name}].{key}");
+        let density = ctx.positive(&m.density, &field("density"))?;
+        let model = match m.model.get_ref().as_str() {
+            "linear-elastic" => {
+                let need = |v: Option<&'_ Spanned<f64>>,
+                            key: &str|
+                 -> Result<(f64, Range<usize>), SceneError> {
+                    v.map(|x| (*x.get_ref(), x.span())).ok_or_else(|| {
+                        ctx.error(
+                            &m.model.span(),
+                            &field(key),
+                            "is required by model `linear-elastic`".to_string(),
+                        )
+                    })
+                };
+                let e = need(m.youngs_modulus.as_ref(), "youngs_modulus")?;
+                let nu = need(m.poisson_ratio.as_ref(), "poisson_ratio")?;
+                let elastic = LinearElastic::new(e.0, nu.0).map_err(|err| {
+                    let span = if err.parameter == "poisson_ratio" {
+                        nu.1.clone()
+                    } else {
+                        e.1.clone()
+                    };
+                    ctx.error(
+                        &span,
+                        &field(err.parameter),
+                        format!("{} is not allowed: must be {}", err.value, err.expected),
+                    )
+                })?;
+                MaterialModel::LinearElastic(elastic)
+            }
+            other => {
+                return Err(ctx.error(
+                    &m.model.span(),
+                    &field("model"),
+                    format!("unknown material model `{other}`; available: `linear-elastic`"),
+                ))
+            }
+        };
+        materials.push(MaterialDescription {
+            name,
+            density,
+            model,
+        });
+    }
+
+    let mut bodies: Vec<BodyDescription<D>> = Vec::with_capacity(file.body.len());
+    for b in &file.body {
+        let body = build_body::<D>(ctx, b, &materials)?;
+        if bodies.iter().any(|x| x.name == body.name) {
+            return Err(ctx.error(
+                &b.name.span(),
+                "body.name",
+                format!("body `{}` is defined twice", body.name),
+            ));
+        }
+        bodies.push(body);
+    }
+    if bodies.is_empty() {
+        return Err(SceneError {
+            file: ctx.origin.to_string(),
+            line: None,
+            column: None,
+            field: "body".into(),
+            message: "the scene has no [[body]]".into(),
+        });
+    }
+    let find_body = |name: &Spanned<String>, field: &str| {
+        bodies
+            .iter()
+            .position(|b| &b.name == name.get_ref())
+            .ok_or_else(|| {
+                ctx.error(
+                    &name.span(),
+                    field,
+                    format!("no body named `{}`", name.get_ref()),
+                )
+            })
+    };
+
+    let mut boundaries = Vec::with_capacity(file.boundary.len());
+    for t in &file.boundary {
+        let body = find_body(&t.body, &format!("boundary[{}].body", t.name.get_ref()))?;
+        boundaries.push(build_boundary::<D>(ctx, t, body, &bodies[body])?);
+    }
+
+    let mut probes = Vec::with_capacity(file.probe.len());
+    for t in &file.probe {
+        let body = find_body(&t.body, &format!("probe[{}].body", t.name.get_ref()))?;
+        if probes
+            .iter()
+            .any(|p: &ProbeSpec| &p.name == t.name.get_ref())
+        {
+            return Err(ctx.error(
+                &t.name.span(),
+                "probe.name",
+                format!("probe `{}` is defined twice", t.name.get_ref()),
+            ));
+        }
+        probes.push(build_probe::<D>(ctx, t, body, &bodies[body])?);
+    }
+
+    let output = match &file.output {
+        Some(o) => OutputSpec {
+            dir: o
+                .dir
+                .as_ref()
+                .map_or_else(|| PathBuf::from("out"), |d| PathBuf::from(d.get_ref())),
+            energy_interval: match &o.energy_interval {
+                Some(i) => ctx.positive(i, "output.energy_interval")?,
+                None => end_time / 1000.0,
+            },
+        },
+        None => OutputSpec {
+            dir: PathBuf::from("out"),
+            energy_interval: end_time / 1000.0,
+        },
+    };
+    Ok((
+        Model {
+            config,
+            materials,
+            bodies,
+            boundaries,
+        },
+        probes,
+        output,
+    ))
+}
+
+fn build_body<const D: usize>(
+    ctx: &Context<'_>,
+    b: &BodyTable,
+    materials: &[MaterialDescription],
+) -> Result<BodyDescription<D>, SceneError> {
+    let name = b.name.get_ref().clone();
+    let field = |key: &str| format!("body[{name}].{key}");
+    let material = materials
+        .iter()
+        .position(|m| &m.name == b.material.get_ref())
+        .ok_or_else(|| {
+            ctx.error(
+                &b.material.span(),
+                &field("material"),
+                format!(
+                    "no material named `{}` (define it in a [[material]] table)",
+                    b.material.get_ref()
+                ),
+            )
+        })?;
+    let spacing = ctx.positive(&b.spacing, &field("spacing"))?;
+    let inline = ShapeTable {
+        box_: b.box_.clone(),
+        cylinder: b.cylinder.clone(),
+        sphere: b.sphere.clone(),
+        disc: b.disc.clone(),
+        velocity: b.velocity.clone(),
+        velocity_gradient: b.velocity_gradient.clone(),
+        velocity_origin: b.velocity_origin.clone(),
+    };
+    let has_inline_shape = inline.box_.is_some()
+        || inline.cylinder.is_some()
+        || inline.sphere.is_some()
+        || inline.disc.is_some();
+    let shapes: Vec<&ShapeTable> = match (has_inline_shape, b.shape.is_empty()) {
+        (true, true) => vec![&inline],
+        (false, false) => {
+            if inline.velocity.is_some() || inline.velocity_gradient.is_some() {
+                return Err(ctx.error(
+                    &b.name.span(),
+                    &field("velocity"),
+                    "with [[body.shape]] tables, give the velocity inside each shape".into(),
+                ));
+            }
+            b.shape.iter().collect()
+        }
+        (true, false) => {
+            return Err(ctx.error(
+                &b.name.span(),
+                &field("shape"),
+                "give either one shape on the body or [[body.shape]] tables, not both".into(),
+            ))
+        }
+        (false, true) => {
+            return Err(ctx.error(
+                &b.name.span(),
+                &name.clone(),
+                "has no shape: add box, cylinder, sphere or disc".into(),
+            ))
+        }
+    };
+    let mut positions: Vec<Vector<D>> = Vec::new();
+    let mut velocities: Vec<Vector<D>> = Vec::new();
+    for (k, s) in shapes.iter().enumerate() {
+        let sfield = |key: &str| {
+            if shapes.len() == 1 {
+                field(key)
+            } else {
+                format!("body[{name}].shape[{k}].{key}")
+            }
+        };
+        let (shape, span) = shape_of::<D>(ctx, s, &sfield)?;
+        let velocity = match &s.velocity {
+            Some(v) => ctx.vector::<D>(v, &sfield("velocity"))?,
+            None => Vector::<D>::zeros(),
+        };
+        let gradient = match &s.velocity_gradient {
+            Some(g) => {
+                let rows = g.get_ref();
+                if rows.len() != D
+                    || rows.iter().any(|r| r.len() != D)
+                    || rows.iter().flatten().any(|x| !x.is_finite())
+                {
+                    return Err(ctx.error(
+                        &g.span(),
+                        &sfield("velocity_gradient"),
+                        format!("must be a {D}x{D} array of finite numbers"),
+                    ));
+                }
+                Tensor::<D>::from_fn(|i, j| rows[i][j])
+            }
+            None => Tensor::<D>::zeros(),
+        };
+        let origin = match &s.velocity_origin {
+            Some(o) => ctx.vector::<D>(o, &sfield("velocity_origin"))?,
+            None => Vector::<D>::zeros(),
+        };
+        let points = fill_shape(&shape, spacing, &positions);
+        if points.is_empty() {
+            return Err(ctx.error(&span, &sfield("shape"), format!("contains no particle at spacing {spacing} (is it smaller than the spacing, or fully inside an earlier shape?)")));
+        }
+        for x in points {
+            velocities.push(velocity + gradient * (x - origin));
+            positions.push(x);
+        }
+    }
+    let volume = spacing.powi(D as i32);
+    Ok(BodyDescription {
+        name: name.clone(),
+        material,
+        spacing,
+        volumes: vec![volume; positions.len()],
+        positions,
+        velocities,
+    })
+}
+
+fn shape_of<const D: usize>(
+    ctx: &Context<'_>,
+    s: &ShapeTable,
+    field: &dyn Fn(&str) -> String,
+) -> Result<(Shape<D>, Range<usize>), SceneError> {
+    let count = [
+        s.box_.is_some(),
+        s.cylinder.is_some(),
+        s.sphere.is_some(),
+        s.disc.is_some(),
+    ]
+    .iter()
+    .filter(|x| **x)
+    .count();
+    let wrong_dim = |span: Range<usize>, key: &str, need: usize| {
+        Err(ctx.error(
+            &span,
+            &field(key),
+            format!("is only available in {need}D scenes, this one is {D}D"),
+        ))
+    };
+    if count > 1 {
+        let span = s
+            .box_
+            .as_ref()
+            .map(|x| x.span())
+            .or(s.cylinder.as_ref().map(|x| x.span()))
+            .unwrap_or(0..0);
+        return Err(ctx.error(
+            &span,
+            &field("shape"),
+            "give exactly one of box, cylinder, sphere, disc per shape".into(),
+        ));
+    }
+    let check_len = |v: &[f64], span: &Range<usize>, key: &str| {
+        if v.len() != D || !v.iter().all(|x| x.is_finite()) {
+            Err(ctx.error(
+                span,
+                &field(key),
+                format!(
+                    "needs {D} finite components in a {D}D scene, got {}",
+                    v.len()
+                ),
+            ))
+        } else {
+            Ok(Vector::<D>::from_iterator(v.iter().copied()))
+        }
+    };
+    let positive = |x: f64, span: &Range<usize>, key: &str| {
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(ctx.error(span, &field(key), format!("must be > 0, got {x}")))
+        }
+    };
+    if let Some(b) = &s.box_ {
+        let span = b.span();
+        let min = check_len(&b.get_ref().min, &span, "box.min")?;
+        let max = check_len(&b.get_ref().max, &span, "box.max")?;
+        if (0..D).any(|k| max[k] <= min[k]) {
+            return Err(ctx.error(
+                &span,
+                &field("box"),
+                "max must exceed min in every component".into(),
+            ));
+        }
+        return Ok((Shape::Box { min, max }, span));
+    }
+    if let Some(c) = &s.cylinder {
+        let span = c.span();
+        if D != 3 {
+            return wrong_dim(span, "cylinder", 3);
+        }
+        let c = c.get_ref();
+        let base = check_len(&c.base, &span, "cylinder.base")?;
+        let axis = match c.axis.as_str() {
+            "x" => 0,
+            "y" => 1,
+            "z" => 2,
+            other => {
+                return Err(ctx.error(
+                    &span,
+                    &field("cylinder.axis"),
+                    format!("must be \"x\", \"y\" or \"z\", got \"{other}\""),
+                ))
+            }
+        };
+        let radius = positive(c.radius, &span, "cylinder.radius")?;
+        let length = positive(c.length, &span, "cylinder.length")?;
+        return Ok((
+            Shape::Cylinder {
+                base,
+                axis,
+                radius,
+                length,
+            },
+            span,
+        ));
+    }
+    if let Some(r) = &s.sphere {
+        let span = r.span();
+        if D != 3 {
+            return wrong_dim(span, "sphere", 3);
+        }
+        let centre = check_len(&r.get_ref().centre, &span, "sphere.centre")?;
+        let radius = positive(r.get_ref().radius, &span, "sphere.radius")?;
+        return Ok((Shape::Ball { centre, radius }, span));
+    }
+    if let Some(r) = &s.disc {
+        let span = r.span();
+        if D != 2 {
+            return wrong_dim(span, "disc", 2);
+        }
+        let centre = check_len(&r.get_ref().centre, &span, "disc.centre")?;
+        let radius = positive(r.get_ref().radius, &span, "disc.radius")?;
+        return Ok((Shape::Ball { centre, radius }, span));
+    }
+    Err(ctx.error(
+        &(0..0),
+        &field("shape"),
+        "has no shape: add box, cylinder, sphere or disc".into(),
+    ))
+}
+
+fn build_boundary<const D: usize>(
+    ctx: &Context<'_>,
+    t: &BoundaryTable,
+    body_index: usize,
+    body: &BodyDescription<D>,
+) -> Result<BoundaryDescription<D>, SceneError> {
+    let name = t.name.get_ref().clone();
+    let field = |key: &str| format!("boundary[{name}].{key}");
+    let particles: Vec<usize> = match (&t.box_, &t.at) {
+        (Some(b), None) => {
+            let span = b.span();
+            let min = ctx.components::<D>(&b.get_ref().min, &span, &field("box.min"))?;
+            let max = ctx.components::<D>(&b.get_ref().max, &span, &field("box.max"))?;
+            let inside: Vec<usize> = body
+                .positions
+                .iter()
+                .enumerate()
+                .filter(|(_, x)| (0..D).all(|k| x[k] >= min[k] && x[k] <= max[k]))
+                .map(|(i, _)| i)
+                .collect();
+            if inside.is_empty() {
+                return Err(ctx.error(
+                    &span,
+                    &field("box"),
+                    format!("selects no particle of body `{}`", body.name),
+                ));
+            }
+            inside
+        }
+        (None, Some(at)) => {
+            let point = ctx.vector::<D>(at, &field("at"))?;
+            vec![nearest_particle(
+                ctx,
+                body,
+                &point,
+                &at.span(),
+                &field("at"),
+            )?]
+        }
+        _ => {
+            return Err(ctx.error(
+                &t.name.span(),
+                &field("box"),
+                "select particles with exactly one of `box` or `at`".into(),
+            ))
+        }
+    };
+    let fixed = t.fixed.as_ref().is_some_and(|f| *f.get_ref());
+    let velocity = match (&t.velocity, fixed) {
+        (Some(v), false) => ctx.vector::<D>(v, &field("velocity"))?,
+        (None, true) => Vector::<D>::zeros(),
+        (Some(v), true) => {
+            return Err(ctx.error(
+                &v.span(),
+                &field("velocity"),
+                "give either `fixed = true` or `velocity`, not both".into(),
+            ))
+        }
+        (None, false) => {
+            return Err(ctx.error(
+                &t.name.span(),
+                &field("fixed"),
+                "needs `fixed = true` or a prescribed `velocity`".into(),
+            ))
+        }
+    };
+    let mut components = [true; D];
+    if let Some(c) = &t.components {
+        components = [false; D];
+        for axis in c.get_ref() {
+            let k = match axis.as_str() {
+                "x" => 0,
+                "y" => 1,
+                "z" => 2,
+                _ => D,
+            };
+            if k >= D {
+                let axes = ["x", "y", "z"][..D].join(", ");
+                return Err(ctx.error(
+                    &c.span(),
+                    &field("components"),
+                    format!("`{axis}` is not an axis of a {D}D scene (axes: {axes})"),
+                ));
+            }
+            components[k] = true;
+        }
+    }
+    Ok(BoundaryDescription {
+        name,
+        body: body_index,
+        particles,
+        velocity,
+        components,
+    })
+}
+
+fn build_probe<const D: usize>(
+    ctx: &Context<'_>,
+    t: &ProbeTable,
+    body_index: usize,
+    body: &BodyDescription<D>,
+) -> Result<ProbeSpec, SceneError> {
+    let name = t.name.get_ref().clone();
+    let field = |key: &str| format!("probe[{name}].{key}");
+    let point = ctx.vector::<D>(&t.at, &field("at"))?;
+    let particle = nearest_particle(ctx, body, &point, &t.at.span(), &field("at"))?;
+    let mut fields = Vec::with_capacity(t.fields.get_ref().len());
+    for f in t.fields.get_ref() {
+        let parsed: ParticleField = f
+            .parse()
+            .map_err(|e: String| ctx.error(&t.fields.span(), &field("fields"), e))?;
+        if !parsed.exists_in(D) {
+            return Err(ctx.error(
+                &t.fields.span(),
+                &field("fields"),
+                format!("`{f}` does not exist in a {D}D scene"),
+            ));
+        }
+        fields.push(parsed);
+    }
+    if fields.is_empty() {
+        return Err(ctx.error(&t.fields.span(), &field("fields"), "lists no field".into()));
+    }
+    let interval = ctx.positive(&t.interval, &field("interval"))?;
+    Ok(ProbeSpec {
+        name,
+        body: body_index,
+        particle,
+        fields,
+        interval,
+    })
+}
+
+/// Nearest particle of `body` to `point` in the reference configuration; an error when the
+/// point is more than one spacing away from every particle (outside the body).
+fn nearest_particle<const D: usize>(
+    ctx: &Context<'_>,
+    body: &BodyDescription<D>,
+    point: &Vector<D>,
+    span: &Range<usize>,
+    field: &str,
+) -> Result<usize, SceneError> {
+    let (index, distance) = body
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, x)| (i, (x - point).norm()))
+        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
+        .expect("bodies are never empty");
+    if distance > body.spacing {
+        return Err(ctx.error(
+            span,
+            field,
+            format!(
+                "is outside body `{}`: the nearest particle is {distance:e} away, more than one spacing ({})",
+                body.name, body.spacing
+            ),
+        ));
+    }
+    Ok(index)
+}

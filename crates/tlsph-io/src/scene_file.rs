@@ -1,0 +1,136 @@
+//! The TOML scene schema as written by users (serde types with source spans). Only parsing
+//! lives here; checking and conversion into a solver model is in `scene.rs`.
+//! Documented for users in `docs/scene-format.md` — keep the two in step.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SceneFile {
+    pub simulation: SimulationTable,
+    #[serde(default)]
+    pub material: Vec<MaterialTable>,
+    #[serde(default)]
+    pub body: Vec<BodyTable>,
+    #[serde(default)]
+    pub boundary: Vec<BoundaryTable>,
+    #[serde(default)]
+    pub probe: Vec<ProbeTable>,
+    #[serde(default)]
+    pub output: Option<OutputTable>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SimulationTable {
+    pub dimension: Spanned<i64>,
+    pub formulation: Spanned<String>,
+    #[serde(default)]
+    pub stress_update: Option<Spanned<String>>,
+    pub kernel: Spanned<String>,
+    pub smoothing_factor: Spanned<f64>,
+    pub cfl: Spanned<f64>,
+    pub end_time: Spanned<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialTable {
+    pub name: Spanned<String>,
+    pub model: Spanned<String>,
+    pub density: Spanned<f64>,
+    pub youngs_modulus: Option<Spanned<f64>>,
+    pub poisson_ratio: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BodyTable {
+    pub name: Spanned<String>,
+    pub material: Spanned<String>,
+    pub spacing: Spanned<f64>,
+    /// A single shape may be given directly on the body ...
+    #[serde(rename = "box")]
+    pub box_: Option<Spanned<BoxShape>>,
+    pub cylinder: Option<Spanned<CylinderShape>>,
+    pub sphere: Option<Spanned<RoundShape>>,
+    pub disc: Option<Spanned<RoundShape>>,
+    pub velocity: Option<Spanned<Vec<f64>>>,
+    pub velocity_gradient: Option<Spanned<Vec<Vec<f64>>>>,
+    pub velocity_origin: Option<Spanned<Vec<f64>>>,
+    /// ... or several in `[[body.shape]]` tables.
+    #[serde(default)]
+    pub shape: Vec<ShapeTable>,
+}
+
+/// One shape of a body with its own initial velocity field.
+#[derive(Debug, Deserialize, Clone, Default)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ShapeTable {
+    #[serde(rename = "box")]
+    pub box_: Option<Spanned<BoxShape>>,
+    pub cylinder: Option<Spanned<CylinderShape>>,
+    pub sphere: Option<Spanned<RoundShape>>,
+    pub disc: Option<Spanned<RoundShape>>,
+    pub velocity: Option<Spanned<Vec<f64>>>,
+    pub velocity_gradient: Option<Spanned<Vec<Vec<f64>>>>,
+    pub velocity_origin: Option<Spanned<Vec<f64>>>,
+}
+
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BoxShape {
+    pub min: Vec<f64>,
+    pub max: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CylinderShape {
+    /// Centre of the base disc.
+    pub base: Vec<f64>,
+    /// "x", "y" or "z".
+    pub axis: String,
+    pub radius: f64,
+    pub length: f64,
+}
+
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RoundShape {
+    pub centre: Vec<f64>,
+    pub radius: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BoundaryTable {
+    pub name: Spanned<String>,
+    pub body: Spanned<String>,
+    #[serde(rename = "box")]
+    pub box_: Option<Spanned<BoxShape>>,
+    pub at: Option<Spanned<Vec<f64>>>,
+    #[serde(default)]
+    pub fixed: Option<Spanned<bool>>,
+    pub velocity: Option<Spanned<Vec<f64>>>,
+    pub components: Option<Spanned<Vec<String>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ProbeTable {
+    pub name: Spanned<String>,
+    pub body: Spanned<String>,
+    pub at: Spanned<Vec<f64>>,
+    pub fields: Spanned<Vec<String>>,
+    pub interval: Spanned<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct OutputTable {
+    pub dir: Option<Spanned<String>>,
+    pub energy_interval: Option<Spanned<f64>>,
+}
