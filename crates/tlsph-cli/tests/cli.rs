@@ -1,0 +1,115 @@
+//! End-to-end checks of the `tlsph` binary: exit codes, messages and the run folder.
+
+use std::fs;
+use std::process::Command;
+
+const SCENE: &str = r#"
+[simulation]
+dimension = 1
+formulation = "total-lagrangian"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = 0.1
+
+[[material]]
+name = "plate"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 0.9
+poisson_ratio = 0.2
+
+[[body]]
+name = "target"
+material = "plate"
+box = { min = [0.0], max = [1.5] }
+spacing = 0.01
+velocity = [0.0]
+
+[[boundary]]
+name = "push"
+body = "target"
+at = [0.0]
+velocity = [0.01]
+
+[[probe]]
+name = "target-mid"
+body = "target"
+at = [0.75]
+fields = ["stress_xx", "velocity_x", "displacement_x"]
+interval = 0.01
+
+[output]
+dir = "out"
+"#;
+
+fn tlsph() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_tlsph"))
+}
+
+#[test]
+fn run_writes_probes_and_energy_and_exits_zero() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("scene.toml");
+    fs::write(&scene, SCENE).unwrap();
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["run", "scene.toml"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let probe = fs::read_to_string(tmp.path().join("out/probes/target-mid.csv")).unwrap();
+    assert!(probe.starts_with("time,stress_xx,velocity_x,displacement_x"));
+    assert!(tmp.path().join("out/energy.csv").exists());
+}
+
+#[test]
+fn a_bad_scene_exits_two_names_file_line_and_field_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("bad.toml");
+    fs::write(
+        &scene,
+        SCENE.replace("poisson_ratio = 0.2", "poisson_ratio = 0.6"),
+    )
+    .unwrap();
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["run", "bad.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = SCENE
+        .lines()
+        .position(|l| l.starts_with("poisson_ratio"))
+        .unwrap()
+        + 1;
+    assert!(err.contains(&format!("bad.toml:{line}:")), "{err}");
+    assert!(err.contains("poisson_ratio"), "{err}");
+    assert!(!tmp.path().join("out").exists());
+    assert!(!tmp.path().join("out.partial").exists());
+}
+
+#[test]
+fn a_missing_file_exits_two() {
+    let out = tlsph()
+        .args(["run", "/nonexistent/scene.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/scene.toml"));
+}
+
+#[test]
+fn check_reports_the_particle_count() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("scene.toml");
+    fs::write(&scene, SCENE).unwrap();
+    let out = tlsph().arg("check").arg(&scene).output().unwrap();
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("150 particles"));
+}
