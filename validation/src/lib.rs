@@ -1,0 +1,44 @@
+//! Replays of the published validation problems. Each problem module builds its scene(s),
+//! runs them, compares with `reference-data/` and returns a [`ProblemReport`].
+//! [`problems()`] lists them for `cargo xtask validate`; [`cost::sweep`] runs the
+//! accuracy-versus-cost sweeps for `cargo xtask cost`.
+
+pub mod analytic;
+pub mod cost;
+pub mod problems;
+pub mod report;
+pub mod variants;
+
+pub use report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
+
+/// A validation problem of the suite.
+#[derive(Debug, Clone, Copy)]
+pub struct Problem {
+    /// Id as in `problems.md`, e.g. `R-P2`.
+    pub id: &'static str,
+    /// One-line title.
+    pub title: &'static str,
+    /// Runs it at a tier.
+    pub run: fn(Tier) -> ProblemReport,
+}
+
+/// Every problem of the suite, in catalogue order.
+pub fn problems() -> Vec<Problem> {
+    vec![
+        Problem {
+            id: problems::r_p2::ID,
+            title: "elastic uniaxial-strain wave, two-plate impact",
+            run: problems::r_p2::run,
+        },
+        Problem {
+            id: "R-P3",
+            title: "gradient consistency, six-particle tables 6.2/6.3",
+            run: |_| problems::r_p3::run(),
+        },
+        Problem {
+            id: problems::r_p4::ID,
+            title: "clamped-free rod vibration from a linear velocity field",
+            run: problems::r_p4::run,
+        },
+    ]
+}

@@ -1,0 +1,5 @@
+//! One module per published problem.
+
+pub mod r_p2;
+pub mod r_p3;
+pub mod r_p4;

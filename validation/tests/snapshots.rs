@@ -1,0 +1,91 @@
+//! Snapshot tests of each problem's key curves. Curves are resampled on a fixed grid and
+//! rounded to what is physically meaningful, so a snapshot changes on a real change of the
+//! physics and not on last-bit noise:
+//! - R-P2 stress and velocity to 1e-4 (0.2 % of the 0.05 plateau; Gibbs ringing at the fronts
+//!   is a deterministic part of the solution and is kept);
+//! - R-P4 displacements to 1e-7 m (0.03 % of the 0.29 mm amplitude) and energy fractions to
+//!   1e-3;
+//! - R-P3 gradient approximations to the 4 decimals printed in the thesis tables.
+
+use std::fmt::Write;
+use tlsph_validation::problems::{r_p2, r_p3, r_p4};
+use tlsph_validation::variants::{sample_series, ALGORITHM_2, ALGORITHM_3};
+
+fn round(x: f64, quantum: f64) -> f64 {
+    let r = (x / quantum).round() * quantum;
+    // Avoid "-0" flicker in snapshots.
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+#[test]
+fn r_p2_quick_gauge_histories() {
+    let run = r_p2::simulate(&ALGORITHM_2, r_p2::QUICK_SPACING);
+    let mut csv = String::from("time,stress_xx_at_1.25,velocity_x_at_1.25,rear_velocity_x\n");
+    for k in 0..=40 {
+        let t = 0.05 * k as f64;
+        let s = sample_series(&run.times, &run.gauge_stress, t);
+        let v = sample_series(&run.times, &run.gauge_velocity, t);
+        let r = sample_series(&run.times, &run.rear_velocity, t);
+        writeln!(
+            csv,
+            "{t:.2},{:.4},{:.4},{:.4}",
+            round(s, 1e-4),
+            round(v, 1e-4),
+            round(r, 1e-4)
+        )
+        .unwrap();
+    }
+    writeln!(
+        csv,
+        "flyer_strain_at_0.45,{:.4}",
+        round(run.flyer_strain, 1e-4)
+    )
+    .unwrap();
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn r_p4_thesis_rod_histories() {
+    let run = r_p4::simulate(&ALGORITHM_3, r_p4::THESIS_PARTICLES, 1.0e5);
+    let e0 = run.kinetic[0] + run.internal[0];
+    let mut csv =
+        String::from("time_us,u_2mm_um,u_3mm_um,u_6mm_um,kinetic_fraction,internal_fraction\n");
+    for k in 0..=31 {
+        let t = 0.4e-6 * k as f64;
+        let u: Vec<f64> = run
+            .displacements
+            .iter()
+            .map(|d| round(sample_series(&run.times, d, t) * 1e6, 0.1))
+            .collect();
+        let ke = round(sample_series(&run.times, &run.kinetic, t) / e0, 1e-3);
+        let ie = round(sample_series(&run.times, &run.internal, t) / e0, 1e-3);
+        writeln!(
+            csv,
+            "{:.1},{:.1},{:.1},{:.1},{ke:.3},{ie:.3}",
+            t * 1e6,
+            u[0],
+            u[1],
+            u[2]
+        )
+        .unwrap();
+    }
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn r_p3_gradient_approximation_table() {
+    let report = r_p3::run();
+    let mut csv = String::from("quantity,measured\n");
+    for row in report
+        .rows
+        .iter()
+        .filter(|r| r.quantity.starts_with("dv/dx"))
+    {
+        writeln!(csv, "{},{:.4}", row.quantity, round(row.measured, 1e-4)).unwrap();
+    }
+    insta::assert_snapshot!(csv);
+}
