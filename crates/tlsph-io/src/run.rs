@@ -17,7 +17,7 @@ pub struct ProbeHistory {
     pub name: String,
     /// Column order of `values`.
     pub fields: Vec<ParticleField>,
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub times: Vec<f64>,
     /// One row per sample, one value per field.
     pub values: Vec<Vec<f64>>,
@@ -42,7 +42,7 @@ pub struct RunRecord {
     pub steps: u64,
     /// Particle count.
     pub particles: usize,
-    /// Wall time of the time loop [s] (setup excluded).
+    /// Wall time of the time loop \[s\] (setup excluded).
     pub wall_s: f64,
     /// Why the run stopped early, if it did.
     pub failure: Option<StepError>,

@@ -60,7 +60,7 @@ pub struct ProbeSpec {
     pub particle: usize,
     /// Sampled fields, in column order.
     pub fields: Vec<ParticleField>,
-    /// Sampling interval [s]; a sample is taken at the first step at or after each multiple.
+    /// Sampling interval \[s\]; a sample is taken at the first step at or after each multiple.
     pub interval: f64,
 }
 
@@ -69,7 +69,7 @@ pub struct ProbeSpec {
 pub struct OutputSpec {
     /// Output folder (relative paths are relative to the working directory).
     pub dir: PathBuf,
-    /// Interval of `energy.csv` / `momentum.csv` rows [s].
+    /// Interval of `energy.csv` / `momentum.csv` rows \[s\].
     pub energy_interval: f64,
 }
 
@@ -116,7 +116,7 @@ impl Scene {
         }
     }
 
-    /// Simulated end time [s].
+    /// Simulated end time \[s\].
     pub fn end_time(&self) -> f64 {
         match &self.model {
             DimensionModel::One(m) => m.config.end_time,
@@ -394,8 +394,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             })
     };
 
-    let mut boundaries = Vec::with_capacity(file.boundary.len());
+    let mut boundaries: Vec<BoundaryDescription<D>> = Vec::with_capacity(file.boundary.len());
     for t in &file.boundary {
+        if boundaries.iter().any(|b| &b.name == t.name.get_ref()) {
+            return Err(ctx.error(
+                &t.name.span(),
+                "boundary.name",
+                format!("boundary `{}` is defined twice", t.name.get_ref()),
+            ));
+        }
         let body = find_body(&t.body, &format!("boundary[{}].body", t.name.get_ref()))?;
         boundaries.push(build_boundary::<D>(ctx, t, body, &bodies[body])?);
     }
@@ -403,6 +410,16 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
     let mut probes = Vec::with_capacity(file.probe.len());
     for t in &file.probe {
         let body = find_body(&t.body, &format!("probe[{}].body", t.name.get_ref()))?;
+        if !is_safe_file_stem(t.name.get_ref()) {
+            return Err(ctx.error(
+                &t.name.span(),
+                "probe.name",
+                format!(
+                    "`{}` cannot be a file name: use letters, digits, `-`, `_` and `.` (not first)",
+                    t.name.get_ref()
+                ),
+            ));
+        }
         if probes
             .iter()
             .any(|p: &ProbeSpec| &p.name == t.name.get_ref())
@@ -481,11 +498,14 @@ fn build_body<const D: usize>(
     let shapes: Vec<&ShapeTable> = match (has_inline_shape, b.shape.is_empty()) {
         (true, true) => vec![&inline],
         (false, false) => {
-            if inline.velocity.is_some() || inline.velocity_gradient.is_some() {
+            if inline.velocity.is_some()
+                || inline.velocity_gradient.is_some()
+                || inline.velocity_origin.is_some()
+            {
                 return Err(ctx.error(
                     &b.name.span(),
                     &field("velocity"),
-                    "with [[body.shape]] tables, give the velocity inside each shape".into(),
+                    "with [[body.shape]] tables, give velocity, velocity_gradient and velocity_origin inside each shape".into(),
                 ));
             }
             b.shape.iter().collect()
@@ -500,7 +520,7 @@ fn build_body<const D: usize>(
         (false, true) => {
             return Err(ctx.error(
                 &b.name.span(),
-                &name.clone(),
+                &field("shape"),
                 "has no shape: add box, cylinder, sphere or disc".into(),
             ))
         }
@@ -753,6 +773,13 @@ fn build_boundary<const D: usize>(
     };
     let mut components = [true; D];
     if let Some(c) = &t.components {
+        if c.get_ref().is_empty() {
+            return Err(ctx.error(
+                &c.span(),
+                &field("components"),
+                "lists no axis; leave it out to impose every component".into(),
+            ));
+        }
         components = [false; D];
         for axis in c.get_ref() {
             let k = match axis.as_str() {
@@ -816,6 +843,15 @@ fn build_probe<const D: usize>(
         fields,
         interval,
     })
+}
+
+/// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
+fn is_safe_file_stem(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
 }
 
 /// Nearest particle of `body` to `point` in the reference configuration; an error when the

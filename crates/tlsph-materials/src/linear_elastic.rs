@@ -10,14 +10,14 @@ use tlsph_math::Tensor3;
 pub struct LinearElastic {
     youngs_modulus: f64,
     poisson_ratio: f64,
-    /// First Lamé parameter λ = Eν/((1+ν)(1−2ν)) [Pa].
+    /// First Lamé parameter λ = Eν/((1+ν)(1−2ν)) \[Pa\].
     lambda: f64,
-    /// Shear modulus μ = G = E/(2(1+ν)) [Pa].
+    /// Shear modulus μ = G = E/(2(1+ν)) \[Pa\].
     shear: f64,
 }
 
 impl LinearElastic {
-    /// Builds the material from Young's modulus E [Pa] and Poisson's ratio ν.
+    /// Builds the material from Young's modulus E \[Pa\] and Poisson's ratio ν.
     ///
     /// Rejects E ≤ 0 and ν outside (−1, 0.5), where the bulk or shear modulus would not be positive.
     pub fn new(youngs_modulus: f64, poisson_ratio: f64) -> Result<Self, MaterialError> {
@@ -38,7 +38,7 @@ impl LinearElastic {
         })
     }
 
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub fn youngs_modulus(&self) -> f64 {
         self.youngs_modulus
     }
@@ -48,27 +48,27 @@ impl LinearElastic {
         self.poisson_ratio
     }
 
-    /// First Lamé parameter λ [Pa] (R 5.73).
+    /// First Lamé parameter λ \[Pa\] (R 5.73).
     pub fn lambda(&self) -> f64 {
         self.lambda
     }
 
-    /// Shear modulus G = μ [Pa] (R 5.74).
+    /// Shear modulus G = μ \[Pa\] (R 5.74).
     pub fn shear_modulus(&self) -> f64 {
         self.shear
     }
 
-    /// Bulk modulus K = λ + 2G/3 [Pa] (R 5.75).
+    /// Bulk modulus K = λ + 2G/3 \[Pa\] (R 5.75).
     pub fn bulk_modulus(&self) -> f64 {
         self.lambda + 2.0 * self.shear / 3.0
     }
 
-    /// Longitudinal (P-wave, uniaxial-strain) modulus M = K + 4G/3 = λ + 2G [Pa] (R 6.1).
+    /// Longitudinal (P-wave, uniaxial-strain) modulus M = K + 4G/3 = λ + 2G \[Pa\] (R 6.1).
     pub fn longitudinal_modulus(&self) -> f64 {
         self.lambda + 2.0 * self.shear
     }
 
-    /// Longitudinal sound speed c = sqrt(M/ρ) [m/s] at density ρ (numerics.md §7, §8.10).
+    /// Longitudinal sound speed c = sqrt(M/ρ) \[m/s\] at density ρ (numerics.md §7, §8.10).
     pub fn sound_speed(&self, density: f64) -> f64 {
         (self.longitudinal_modulus() / density).sqrt()
     }
@@ -80,7 +80,7 @@ impl LinearElastic {
             + Tensor3::identity() * (self.lambda * green_lagrange.trace())
     }
 
-    /// Strain energy per unit reference volume of St Venant–Kirchhoff, ½λ(tr E)² + μ E:E [J/m³].
+    /// Strain energy per unit reference volume of St Venant–Kirchhoff, ½λ(tr E)² + μ E:E \[J/m³\].
     #[inline]
     pub fn strain_energy_density(&self, green_lagrange: &Tensor3) -> f64 {
         let tr = green_lagrange.trace();

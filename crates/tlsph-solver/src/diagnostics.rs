@@ -6,11 +6,11 @@ use tlsph_math::Vector3;
 /// Energies and momenta at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Diagnostics {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time: f64,
-    /// Σ ½ m |v|² [J].
+    /// Σ ½ m |v|² \[J\].
     pub kinetic: f64,
-    /// Σ m e [J] (R 4.12).
+    /// Σ m e \[J\] (R 4.12).
     pub internal: f64,
     /// Σ m v [kg m/s], padded to 3D.
     pub linear_momentum: Vector3,
@@ -19,7 +19,7 @@ pub struct Diagnostics {
 }
 
 impl Diagnostics {
-    /// Kinetic + internal energy [J].
+    /// Kinetic + internal energy \[J\].
     pub fn total_energy(&self) -> f64 {
         self.kinetic + self.internal
     }

@@ -76,7 +76,7 @@ pub enum StepError {
     NonFinite {
         /// Step number.
         step: u64,
-        /// Simulated time [s].
+        /// Simulated time \[s\].
         time: f64,
         /// Body name.
         body: String,
@@ -89,7 +89,7 @@ pub enum StepError {
     Inverted {
         /// Step number.
         step: u64,
-        /// Simulated time [s].
+        /// Simulated time \[s\].
         time: f64,
         /// Body name.
         body: String,

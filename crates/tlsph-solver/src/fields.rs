@@ -6,24 +6,24 @@ use std::str::FromStr;
 /// A scalar quantity that can be sampled at a particle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ParticleField {
-    /// Cauchy stress component σ_ij [Pa] (i, j in 0..3; plane-strain/uniaxial-strain
+    /// Cauchy stress component σ_ij \[Pa\] (i, j in 0..3; plane-strain/uniaxial-strain
     /// out-of-plane components included).
     Stress(usize, usize),
-    /// Pressure p = −tr σ / 3 [Pa] (compression positive, numerics.md §0).
+    /// Pressure p = −tr σ / 3 \[Pa\] (compression positive, numerics.md §0).
     Pressure,
-    /// Von Mises stress sqrt(3/2 s:s) [Pa] (R 6.20).
+    /// Von Mises stress sqrt(3/2 s:s) \[Pa\] (R 6.20).
     VonMises,
-    /// Velocity component [m/s].
+    /// Velocity component \[m/s\].
     Velocity(usize),
-    /// Displacement component u = x − X [m].
+    /// Displacement component u = x − X \[m\].
     Displacement(usize),
-    /// Current position component x [m].
+    /// Current position component x \[m\].
     Position(usize),
-    /// Current density ρ = ρ0 / det F [kg/m³] (R 4.9).
+    /// Current density ρ = ρ0 / det F \[kg/m³\] (R 4.9).
     Density,
     /// det F.
     Jacobian,
-    /// Specific internal energy [J/kg].
+    /// Specific internal energy \[J/kg\].
     InternalEnergy,
 }
 

@@ -59,7 +59,7 @@ pub struct SimulationConfig {
     pub smoothing_factor: f64,
     /// Courant number C in Δt = C min h/(c + |v|) (R 5.69–5.70).
     pub cfl: f64,
-    /// Simulated time at which the run ends [s].
+    /// Simulated time at which the run ends \[s\].
     pub end_time: f64,
 }
 
@@ -71,7 +71,7 @@ pub enum MaterialModel {
 }
 
 impl MaterialModel {
-    /// Longitudinal modulus K + 4G/3 used for the sound speed [Pa] (numerics.md §7).
+    /// Longitudinal modulus K + 4G/3 used for the sound speed \[Pa\] (numerics.md §7).
     pub fn longitudinal_modulus(&self) -> f64 {
         match self {
             MaterialModel::LinearElastic(m) => m.longitudinal_modulus(),
@@ -84,7 +84,7 @@ impl MaterialModel {
 pub struct MaterialDescription {
     /// Name referenced by bodies.
     pub name: String,
-    /// Reference density ρ0 [kg/m³].
+    /// Reference density ρ0 \[kg/m³\].
     pub density: f64,
     /// Constitutive model.
     pub model: MaterialModel,
@@ -98,13 +98,13 @@ pub struct BodyDescription<const D: usize> {
     pub name: String,
     /// Index into `Model::materials`.
     pub material: usize,
-    /// Particle spacing Δx [m]; h = smoothing_factor × Δx.
+    /// Particle spacing Δx \[m\]; h = smoothing_factor × Δx.
     pub spacing: f64,
-    /// Reference positions X [m].
+    /// Reference positions X \[m\].
     pub positions: Vec<Vector<D>>,
-    /// Reference volumes V0 [m^D].
+    /// Reference volumes V0 \[m^D\].
     pub volumes: Vec<f64>,
-    /// Initial velocities [m/s].
+    /// Initial velocities \[m/s\].
     pub velocities: Vec<Vector<D>>,
 }
 
@@ -118,7 +118,7 @@ pub struct BoundaryDescription<const D: usize> {
     pub body: usize,
     /// Particle indices local to the body.
     pub particles: Vec<usize>,
-    /// Prescribed velocity [m/s] (only the components flagged in `components` are imposed).
+    /// Prescribed velocity \[m/s\] (only the components flagged in `components` are imposed).
     pub velocity: Vector<D>,
     /// Which velocity components are imposed.
     pub components: [bool; D],

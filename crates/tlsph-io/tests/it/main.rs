@@ -106,6 +106,11 @@ fn impossible_values_are_named_with_field_and_line() {
             "simulation.kernel",
         ),
         ("dimension = 1", "dimension = 4", "simulation.dimension"),
+        (
+            "name = \"target-mid\"",
+            "name = \"../escape\"",
+            "probe.name",
+        ),
     ];
     for (from, to, field) in cases {
         let text = PLATE_IMPACT.replace(from, to);
