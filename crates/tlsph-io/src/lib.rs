@@ -6,10 +6,12 @@ pub mod plot;
 mod run;
 mod scene;
 mod scene_file;
+pub mod vtk;
 
 pub use geometry::{fill_shape, Shape};
 pub use run::{
-    run_model, run_scene, run_scene_to_dir, write_csv, ProbeHistory, Progress, RunError, RunRecord,
+    frame_of, run_model, run_scene, run_scene_to_dir, run_scene_with_frames, write_csv, FrameSink,
+    Intervals, ProbeHistory, Progress, RunError, RunRecord,
 };
 pub use scene::{
     load_scene, parse_scene, DimensionModel, OutputSpec, ProbeSpec, Scene, SceneError,

@@ -3,6 +3,7 @@
 //! place at the end, so an existing result is never left half-overwritten.
 
 use crate::scene::{DimensionModel, ProbeSpec, Scene};
+use crate::vtk::{write_pvd, write_vtu, Frame, FrameArray};
 use std::fmt;
 use std::fs;
 use std::io::Write;
@@ -92,13 +93,80 @@ impl std::error::Error for RunError {}
 /// Progress callback: called with (simulated time, end time) after every step.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 
+/// Frame callback: receives a particle frame at every frame interval.
+pub type FrameSink<'a> = &'a mut dyn FnMut(&Frame);
+
+/// Sampling intervals of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Intervals {
+    /// Interval of energy/momentum rows \[s\].
+    pub energy: f64,
+    /// Interval of particle frames \[s\]; `None` for no frames.
+    pub frames: Option<f64>,
+}
+
+/// A 3D-padded particle frame of the current state: positions, displacement, velocity,
+/// Cauchy stress (tensor), pressure, von Mises stress, density, det F, specific internal
+/// energy and the body index.
+pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
+    let n = sim.n_particles();
+    let pad =
+        |v: &[f64]| -> [f64; 3] { std::array::from_fn(|k| if k < v.len() { v[k] } else { 0.0 }) };
+    let vector = |name: &str, f: &dyn Fn(usize) -> [f64; 3]| FrameArray {
+        name: name.into(),
+        components: 3,
+        values: (0..n).flat_map(f).collect(),
+    };
+    let scalar = |field: ParticleField| FrameArray {
+        name: field.to_string(),
+        components: 1,
+        values: (0..n).map(|i| sim.sample(field, i)).collect(),
+    };
+    let positions = (0..n)
+        .map(|i| pad((sim.positions0()[i] + sim.displacements()[i]).as_slice()))
+        .collect();
+    let arrays = vec![
+        vector("displacement", &|i| pad(sim.displacements()[i].as_slice())),
+        vector("velocity", &|i| pad(sim.velocity(i).as_slice())),
+        FrameArray {
+            name: "stress".into(),
+            components: 9,
+            // Row-major: VTK reads tensors as (xx, xy, xz, yx, ...).
+            values: sim
+                .stresses()
+                .iter()
+                .flat_map(|s| {
+                    let t = s.transpose();
+                    t.as_slice().to_vec()
+                })
+                .collect(),
+        },
+        scalar(ParticleField::Pressure),
+        scalar(ParticleField::VonMises),
+        scalar(ParticleField::Density),
+        scalar(ParticleField::Jacobian),
+        scalar(ParticleField::InternalEnergy),
+        FrameArray {
+            name: "body".into(),
+            components: 1,
+            values: (0..n).map(|i| sim.body_of(i) as f64).collect(),
+        },
+    ];
+    Frame {
+        time: sim.time(),
+        positions,
+        arrays,
+    }
+}
+
 /// Runs a model in memory, sampling `probes` at their intervals and diagnostics every
 /// `energy_interval`. Returns the record and the final simulation state. A step failure ends
 /// the run early and is reported in `RunRecord::failure`; everything sampled before is kept.
 pub fn run_model<const D: usize>(
     model: Model<D>,
     probes: &[ProbeSpec],
-    energy_interval: f64,
+    intervals: Intervals,
+    on_frame: FrameSink<'_>,
     progress: Progress<'_>,
 ) -> Result<(RunRecord, Simulation<D>), SetupError> {
     let mut sim = Simulation::new(model)?;
@@ -118,6 +186,7 @@ pub fn run_model<const D: usize>(
         .collect();
     let mut next_probe = vec![0.0f64; probes.len()];
     let mut next_energy = 0.0f64;
+    let mut next_frame = 0.0f64;
     let mut diagnostics = Vec::new();
     let start = Instant::now();
     let mut failure = None;
@@ -143,7 +212,13 @@ pub fn run_model<const D: usize>(
         }
         if t >= next_energy || last {
             diagnostics.push(sim.diagnostics());
-            next_energy = next_multiple(t, energy_interval);
+            next_energy = next_multiple(t, intervals.energy);
+        }
+        if let Some(interval) = intervals.frames {
+            if t >= next_frame || last {
+                on_frame(&frame_of(&sim));
+                next_frame = next_multiple(t, interval);
+            }
         }
         progress(t, end_time);
     }
@@ -164,20 +239,33 @@ fn next_multiple(t: f64, interval: f64) -> f64 {
     k * interval
 }
 
-/// Runs a scene in memory (no files).
-pub fn run_scene(scene: &Scene, progress: Progress<'_>) -> Result<RunRecord, SetupError> {
-    let interval = scene.output.energy_interval;
+/// Runs a scene in memory (no files); frames, if the scene asks for them, go to `on_frame`.
+pub fn run_scene_with_frames(
+    scene: &Scene,
+    on_frame: FrameSink<'_>,
+    progress: Progress<'_>,
+) -> Result<RunRecord, SetupError> {
+    let intervals = Intervals {
+        energy: scene.output.energy_interval,
+        frames: scene.output.frame_interval,
+    };
+    let probes = &scene.probes;
     match &scene.model {
         DimensionModel::One(m) => {
-            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+            run_model(m.clone(), probes, intervals, on_frame, progress).map(|r| r.0)
         }
         DimensionModel::Two(m) => {
-            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+            run_model(m.clone(), probes, intervals, on_frame, progress).map(|r| r.0)
         }
         DimensionModel::Three(m) => {
-            run_model(m.clone(), &scene.probes, interval, progress).map(|r| r.0)
+            run_model(m.clone(), probes, intervals, on_frame, progress).map(|r| r.0)
         }
     }
+}
+
+/// Runs a scene in memory (no files, frames discarded).
+pub fn run_scene(scene: &Scene, progress: Progress<'_>) -> Result<RunRecord, SetupError> {
+    run_scene_with_frames(scene, &mut |_| {}, progress)
 }
 
 /// Runs a scene and writes its run folder `dir` (see `docs/scene-format.md`, "Outputs").
@@ -191,8 +279,46 @@ pub fn run_scene_to_dir(
     progress: Progress<'_>,
 ) -> Result<RunRecord, RunError> {
     check_replaceable(dir)?;
-    let record = run_scene(scene, progress).map_err(RunError::Setup)?;
-    write_run_folder(scene, &record, dir)?;
+    let partial = sibling(dir, "partial");
+    let mut frames: Vec<(f64, PathBuf)> = Vec::new();
+    let mut frame_error: Option<RunError> = None;
+    let mut sink = |frame: &Frame| {
+        if frame_error.is_some() {
+            return;
+        }
+        if frames.is_empty() && partial.exists() {
+            // A stale folder from an interrupted run: start afresh.
+            if let Err(e) = fs::remove_dir_all(&partial) {
+                frame_error = Some(RunError::Io {
+                    path: partial.clone(),
+                    message: e.to_string(),
+                });
+                return;
+            }
+        }
+        let name = PathBuf::from("frames").join(format!("frame_{:05}.vtu", frames.len()));
+        match write_vtu(&partial.join(&name), frame) {
+            Ok(()) => frames.push((frame.time, name)),
+            Err(e) => {
+                frame_error = Some(RunError::Io {
+                    path: partial.join(&name),
+                    message: e.to_string(),
+                })
+            }
+        }
+    };
+    let record = run_scene_with_frames(scene, &mut sink, progress).map_err(RunError::Setup)?;
+    if let Some(e) = frame_error {
+        return Err(e);
+    }
+    if !frames.is_empty() {
+        let pvd = partial.join("frames.pvd");
+        write_pvd(&pvd, &frames).map_err(|e| RunError::Io {
+            path: pvd.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    write_run_folder(scene, &record, dir, !frames.is_empty())?;
     Ok(record)
 }
 
@@ -222,13 +348,20 @@ fn check_replaceable(dir: &Path) -> Result<(), RunError> {
     }
 }
 
-fn write_run_folder(scene: &Scene, record: &RunRecord, dir: &Path) -> Result<(), RunError> {
+fn write_run_folder(
+    scene: &Scene,
+    record: &RunRecord,
+    dir: &Path,
+    keep_partial: bool,
+) -> Result<(), RunError> {
     let partial = sibling(dir, "partial");
     let io = |path: &Path, e: std::io::Error| RunError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    if partial.exists() {
+    // With `keep_partial` the partial folder already holds this run's frames; otherwise any
+    // leftover is from an interrupted run.
+    if partial.exists() && !keep_partial {
         fs::remove_dir_all(&partial).map_err(|e| io(&partial, e))?;
     }
     fs::create_dir_all(partial.join("probes")).map_err(|e| io(&partial, e))?;

@@ -71,6 +71,8 @@ pub struct OutputSpec {
     pub dir: PathBuf,
     /// Interval of `energy.csv` / `momentum.csv` rows \[s\].
     pub energy_interval: f64,
+    /// Interval of VTK particle frames (`frames/*.vtu`, `frames.pvd`) \[s\]; `None` for none.
+    pub frame_interval: Option<f64>,
 }
 
 /// A solver model in the scene's dimension.
@@ -433,20 +435,23 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         probes.push(build_probe::<D>(ctx, t, body, &bodies[body])?);
     }
 
-    let output = match &file.output {
-        Some(o) => OutputSpec {
-            dir: o
-                .dir
-                .as_ref()
-                .map_or_else(|| PathBuf::from("out"), |d| PathBuf::from(d.get_ref())),
-            energy_interval: match &o.energy_interval {
-                Some(i) => ctx.positive(i, "output.energy_interval")?,
-                None => end_time / 1000.0,
-            },
+    let output = OutputSpec {
+        dir: file
+            .output
+            .as_ref()
+            .and_then(|o| o.dir.as_ref())
+            .map_or_else(|| PathBuf::from("out"), |d| PathBuf::from(d.get_ref())),
+        energy_interval: match file
+            .output
+            .as_ref()
+            .and_then(|o| o.energy_interval.as_ref())
+        {
+            Some(i) => ctx.positive(i, "output.energy_interval")?,
+            None => end_time / 1000.0,
         },
-        None => OutputSpec {
-            dir: PathBuf::from("out"),
-            energy_interval: end_time / 1000.0,
+        frame_interval: match file.output.as_ref().and_then(|o| o.frame_interval.as_ref()) {
+            Some(i) => Some(ctx.positive(i, "output.frame_interval")?),
+            None => None,
         },
     };
     Ok((

@@ -133,4 +133,5 @@ pub(crate) struct ProbeTable {
 pub(crate) struct OutputTable {
     pub dir: Option<Spanned<String>>,
     pub energy_interval: Option<Spanned<f64>>,
+    pub frame_interval: Option<Spanned<f64>>,
 }

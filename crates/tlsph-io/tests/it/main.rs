@@ -214,3 +214,22 @@ velocity_gradient = [[0.0, -1.0], [1.0, 0.0]]
     let e = parse_scene(&wrong, "bad.toml").unwrap_err();
     assert!(e.message.contains("3D"), "{e}");
 }
+
+#[test]
+fn frames_are_written_as_vtu_with_a_pvd_index() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    let text = PLATE_IMPACT
+        .replace("end_time = 2.0", "end_time = 0.1")
+        .replace("dir = \"out\"", "dir = \"out\"\nframe_interval = 0.05");
+    let scene = parse_scene(&text, "scene.toml").unwrap();
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    let pvd = fs::read_to_string(dir.join("frames.pvd")).unwrap();
+    // Frames at t = 0, 0.05 and the end 0.1.
+    assert_eq!(pvd.matches("<DataSet").count(), 3, "{pvd}");
+    let vtu = fs::read_to_string(dir.join("frames/frame_00002.vtu")).unwrap();
+    for name in ["displacement", "velocity", "stress", "pressure", "von_mises", "density"] {
+        assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name}");
+    }
+    assert!(vtu.contains("NumberOfPoints=\"200\""));
+}
