@@ -119,22 +119,39 @@ fn a_run_that_breaks_down_exits_one_names_the_particle_and_keeps_its_output() {
     // A rod crushed at ten times its wave speed inverts within a few steps.
     let tmp = tempfile::tempdir().unwrap();
     let scene = SCENE
-        .replace("velocity = [0.0]", "velocity_gradient = [[-100.0]]\nvelocity_origin = [0.75]")
+        .replace(
+            "velocity = [0.0]",
+            "velocity_gradient = [[-100.0]]\nvelocity_origin = [0.75]",
+        )
         .replace("end_time = 0.1", "end_time = 1.0");
     fs::write(tmp.path().join("crush.toml"), scene).unwrap();
-    let out = tlsph().current_dir(tmp.path()).args(["run", "crush.toml"]).output().unwrap();
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["run", "crush.toml"])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("particle") && err.contains("target") && err.contains("step"), "{err}");
+    assert!(
+        err.contains("particle") && err.contains("target") && err.contains("step"),
+        "{err}"
+    );
     let summary = fs::read_to_string(tmp.path().join("out/summary.toml")).unwrap();
     assert!(summary.contains("status = \"failed\""), "{summary}");
     let probe = fs::read_to_string(tmp.path().join("out/probes/target-mid.csv")).unwrap();
-    assert!(probe.lines().count() >= 2, "the samples before the failure are kept");
+    assert!(
+        probe.lines().count() >= 2,
+        "the samples before the failure are kept"
+    );
 }
 
 #[test]
 fn the_example_scene_is_valid() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/plate_impact.toml");
     let out = tlsph().arg("check").arg(scene).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

@@ -37,3 +37,29 @@ pub(crate) fn positive(parameter: &'static str, value: f64) -> Result<f64, Mater
         })
     }
 }
+
+/// Checks `value >= 0` and finite.
+pub(crate) fn non_negative(parameter: &'static str, value: f64) -> Result<f64, MaterialError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(MaterialError {
+            parameter,
+            value,
+            expected: "a finite number at least 0",
+        })
+    }
+}
+
+/// Checks that `value` is finite (any sign).
+pub(crate) fn finite(parameter: &'static str, value: f64) -> Result<f64, MaterialError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(MaterialError {
+            parameter,
+            value,
+            expected: "a finite number",
+        })
+    }
+}

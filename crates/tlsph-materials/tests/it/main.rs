@@ -132,3 +132,10 @@ fn strain_energy_is_consistent_with_pk2() {
         }
     }
 }
+
+mod damage;
+mod drivers;
+mod eos;
+mod johnson_cook;
+mod objectivity;
+mod von_mises;
