@@ -7,9 +7,7 @@ use crate::particles::Particles;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_materials::LinearElastic;
-use tlsph_math::{
-    embed_with_identity, embed_with_zeros, inverse3, outer, project, sym, Tensor, Tensor3,
-};
+use tlsph_math::{embed_with_identity, embed_with_zeros, outer, project, sym, Tensor, Tensor3};
 
 /// Minimum particles per rayon task: below this, splitting costs more than it saves.
 const MIN_PARTICLES_PER_TASK: usize = 256;
@@ -17,8 +15,9 @@ const MIN_PARTICLES_PER_TASK: usize = 256;
 /// F^n = I + Σ_J V0_J (u_J − u_I) ⊗ G̃_IJ and Ḟ^{n−½} = Σ_J V0_J (v_J − v_I) ⊗ G̃_IJ
 /// (R 4.7–4.8, 4.24; numerics.md §4.2–4.3), gathered per particle.
 pub(crate) fn gather_kinematics<const D: usize>(bonds: &Bonds<D>, p: &mut Particles<D>) {
-    let u = &p.displacements;
-    let v = &p.velocities;
+    let u = &p.displacements[..];
+    // Same length as `u`, so the bounds check on u[j] also covers v[j].
+    let v = &p.velocities[..u.len()];
     p.deformation_gradient
         .par_iter_mut()
         .zip(p.deformation_rate.par_iter_mut())
@@ -28,11 +27,11 @@ pub(crate) fn gather_kinematics<const D: usize>(bonds: &Bonds<D>, p: &mut Partic
             let (ui, vi) = (u[i], v[i]);
             let mut grad_u = Tensor::<D>::zeros();
             let mut grad_v = Tensor::<D>::zeros();
-            for b in bonds.range(i) {
-                let j = bonds.neighbours[b] as usize;
-                let g = bonds.gradient[b];
-                grad_u += outer(&(u[j] - ui), &g);
-                grad_v += outer(&(v[j] - vi), &g);
+            let r = bonds.range(i);
+            for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
+                let j = j as usize;
+                grad_u += outer(&(u[j] - ui), g);
+                grad_v += outer(&(v[j] - vi), g);
             }
             *f = Tensor::<D>::identity() + grad_u;
             *f_dot = grad_v;
@@ -40,24 +39,76 @@ pub(crate) fn gather_kinematics<const D: usize>(bonds: &Bonds<D>, p: &mut Partic
 }
 
 /// m_I a_I = V0_I [P_I Σ_J V0_J G̃_IJ − Σ_J P_J V0_J G̃_JI] (numerics.md §4.5 form (c);
-/// reduces to the symmetric sum form (a) of R 4.26 for uncorrected gradients).
+/// reduces to the symmetric sum form (a) of R 4.26 for uncorrected gradients), then the kick
+/// v += `kick` a in the same pass (R 5.64–5.66).
 /// Pair terms are equal and opposite, so linear momentum is conserved exactly.
-pub(crate) fn gather_accelerations<const D: usize>(bonds: &Bonds<D>, p: &mut Particles<D>) {
+pub(crate) fn gather_accelerations_and_kick<const D: usize>(
+    bonds: &Bonds<D>,
+    p: &mut Particles<D>,
+    kick: f64,
+) {
     let pk1 = &p.pk1;
     let volumes0 = &p.volumes0;
     let masses = &p.masses;
     p.accelerations
         .par_iter_mut()
+        .zip(p.velocities.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(i, a)| {
+        .for_each(|(i, (a, v))| {
             let mut force = pk1[i] * bonds.gradient_sum[i];
-            for b in bonds.range(i) {
-                let j = bonds.neighbours[b] as usize;
-                force -= pk1[j] * bonds.reverse_gradient[b];
+            let r = bonds.range(i);
+            for (&j, g) in bonds.neighbours[r.clone()]
+                .iter()
+                .zip(&bonds.reverse_gradient[r])
+            {
+                force -= pk1[j as usize] * g;
             }
             *a = force * (volumes0[i] / masses[i]);
+            *v += *a * kick;
         });
+}
+
+/// (cof M, det M) of a 3x3 tensor, with cof M = det M · M⁻ᵀ (so J σ F⁻ᵀ = σ cof F, no division).
+///
+/// Minors and determinant use the same operations, in the same order, as nalgebra's
+/// `try_inverse` and `determinant` for 3x3.
+#[inline]
+fn cofactor_and_determinant(m: &Tensor3) -> (Tensor3, f64) {
+    let (m11, m12, m13) = (m[(0, 0)], m[(0, 1)], m[(0, 2)]);
+    let (m21, m22, m23) = (m[(1, 0)], m[(1, 1)], m[(1, 2)]);
+    let (m31, m32, m33) = (m[(2, 0)], m[(2, 1)], m[(2, 2)]);
+    let minor_m12_m23 = m22 * m33 - m32 * m23;
+    let minor_m11_m23 = m21 * m33 - m31 * m23;
+    let minor_m11_m22 = m21 * m32 - m31 * m22;
+    let det = m11 * minor_m12_m23 - m12 * minor_m11_m23 + m13 * minor_m11_m22;
+    // `Tensor3::new` takes rows; these rows are the columns of the adjugate (cof M = adj Mᵀ).
+    let cofactor = Tensor3::new(
+        minor_m12_m23,
+        -minor_m11_m23,
+        minor_m11_m22,
+        m13 * m32 - m33 * m12,
+        m11 * m33 - m31 * m13,
+        m12 * m31 - m32 * m11,
+        m12 * m23 - m22 * m13,
+        m13 * m21 - m23 * m11,
+        m11 * m22 - m21 * m12,
+    );
+    (cofactor, det)
+}
+
+/// (M⁻¹, det M) of a 3x3 tensor sharing one determinant; the inverse is `None` when it is
+/// singular or not finite (as [`tlsph_math::inverse3`]). Bit-identical to nalgebra's
+/// `try_inverse` (each adjugate entry divided by det M) and `determinant`.
+#[inline]
+fn inverse_and_determinant(m: &Tensor3) -> (Option<Tensor3>, f64) {
+    let (cofactor, det) = cofactor_and_determinant(m);
+    if det == 0.0 {
+        return (None, det);
+    }
+    let inverse = cofactor.transpose().map(|c| c / det);
+    let finite = inverse.iter().all(|x| x.is_finite());
+    (finite.then_some(inverse), det)
 }
 
 /// Inputs of one constitutive update over a body's particle range.
@@ -96,21 +147,23 @@ pub(crate) fn update_jaumann_rate<const D: usize>(
             let f = embed_with_identity(&f_all[k]);
             let f_dot = embed_with_zeros(&f_dot_all[k]);
             let f_half = f - f_dot * (0.5 * dt);
-            let (l, j_half) = match inverse3(&f_half) {
-                Some(inv) => (f_dot * inv, f_half.determinant()),
-                None => (Tensor3::zeros(), f64::NAN),
+            let (l, j_half) = match inverse_and_determinant(&f_half) {
+                (Some(inv), det) => (f_dot * inv, det),
+                (None, _) => (Tensor3::zeros(), f64::NAN),
             };
             let d = sym(&l);
             let w = (l - l.transpose()) * 0.5;
             let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
             *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
             *sigma = sigma_new;
-            let j = f.determinant();
+            let (cofactor, j) = cofactor_and_determinant(&f);
             *jac = j;
-            // P = J σ F⁻ᵀ (R 5.32, numerics.md §4.4); a singular F leaves NaN for the check.
-            *pk1 = match inverse3(&f) {
-                Some(f_inv) => project(&(sigma_new * f_inv.transpose() * j)),
-                None => Tensor::<D>::from_element(f64::NAN),
+            // P = J σ F⁻ᵀ = σ cof F (R 5.32, numerics.md §4.4); a singular or non-finite F
+            // leaves NaN for the check.
+            *pk1 = if j != 0.0 && j.is_finite() {
+                project(&(sigma_new * cofactor))
+            } else {
+                Tensor::<D>::from_element(f64::NAN)
             };
         });
 }
@@ -147,7 +200,8 @@ pub(crate) fn update_green_lagrange<const D: usize>(
             *energy += 0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
             let j = f.determinant();
             *jac = j;
-            *pk1 = project(&(f * s));
-            *sigma = f * s * f.transpose() / j;
+            let fs = f * s;
+            *pk1 = project(&fs);
+            *sigma = fs * f.transpose() / j;
         });
 }

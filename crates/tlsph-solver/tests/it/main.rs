@@ -1,6 +1,8 @@
 //! Behaviour tests of the TLSPH solver: consistency, objectivity, conservation, determinism
 //! and failure reporting.
 
+mod allocation;
+
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Tensor3, Vector};
