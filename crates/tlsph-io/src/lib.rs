@@ -6,6 +6,7 @@ pub mod plot;
 mod run;
 mod scene;
 mod scene_file;
+mod scene_material;
 pub mod vtk;
 
 pub use geometry::{fill_shape, Shape};

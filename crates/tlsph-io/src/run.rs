@@ -125,7 +125,7 @@ pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
     let positions = (0..n)
         .map(|i| pad((sim.positions0()[i] + sim.displacements()[i]).as_slice()))
         .collect();
-    let arrays = vec![
+    let mut arrays = vec![
         vector("displacement", &|i| pad(sim.displacements()[i].as_slice())),
         vector("velocity", &|i| pad(sim.velocity(i).as_slice())),
         FrameArray {
@@ -152,6 +152,13 @@ pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
             values: (0..n).map(|i| sim.body_of(i) as f64).collect(),
         },
     ];
+    // Optional state only where the scene declared it.
+    if sim.has_plastic_strain() {
+        arrays.push(scalar(ParticleField::PlasticStrain));
+    }
+    if sim.has_temperature() {
+        arrays.push(scalar(ParticleField::Temperature));
+    }
     Frame {
         time: sim.time(),
         positions,
@@ -379,15 +386,41 @@ fn write_run_folder(
             rows,
         )?;
     }
-    let energy_rows = record
+    // Booked energies of declared effects get a column each, before `total`.
+    let effect_names: Vec<String> = record
         .diagnostics
-        .iter()
-        .map(|d| vec![d.time, d.kinetic, d.internal, d.total_energy()]);
-    write_csv(
-        &partial.join("energy.csv"),
-        &["time", "kinetic", "internal", "total"].map(String::from),
-        energy_rows,
-    )?;
+        .first()
+        .map(|d| d.effect_energies.iter().map(|(n, _)| n.clone()).collect())
+        .unwrap_or_default();
+    let mut energy_header: Vec<String> = ["time", "kinetic", "internal"].map(String::from).to_vec();
+    energy_header.extend(effect_names.iter().cloned());
+    energy_header.push("total".into());
+    let energy_rows = record.diagnostics.iter().map(|d| {
+        let mut row = vec![d.time, d.kinetic, d.internal];
+        row.extend(d.effect_energies.iter().map(|(_, e)| *e));
+        row.push(d.total_energy());
+        row
+    });
+    write_csv(&partial.join("energy.csv"), &energy_header, energy_rows)?;
+    let force_names: Vec<String> = record
+        .diagnostics
+        .first()
+        .map(|d| d.effect_forces.iter().map(|(n, _)| n.clone()).collect())
+        .unwrap_or_default();
+    if !force_names.is_empty() {
+        let mut header = vec!["time".to_string()];
+        for n in &force_names {
+            header.extend(["x", "y", "z"].map(|c| format!("{n}_force_{c}")));
+        }
+        let rows = record.diagnostics.iter().map(|d| {
+            let mut row = vec![d.time];
+            for (_, f) in &d.effect_forces {
+                row.extend([f.x, f.y, f.z]);
+            }
+            row
+        });
+        write_csv(&partial.join("walls.csv"), &header, rows)?;
+    }
     let momentum_rows = record.diagnostics.iter().map(|d| {
         let (p, l) = (d.linear_momentum, d.angular_momentum);
         vec![d.time, p.x, p.y, p.z, l.x, l.y, l.z]

@@ -7,11 +7,10 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use tlsph_kernels::KernelKind;
-use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BodyDescription, BoundaryDescription, Formulation, MaterialDescription, MaterialModel, Model,
-    ParticleField, SimulationConfig, StressUpdate,
+    BodyDescription, BoundaryDescription, EffectsDescription, Formulation, MaterialDescription,
+    Model, ParticleField, SimulationConfig, StressUpdate, WallDescription,
 };
 use toml::Spanned;
 
@@ -173,7 +172,7 @@ pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     }
 }
 
-struct Context<'a> {
+pub(crate) struct Context<'a> {
     text: &'a str,
     origin: &'a str,
 }
@@ -186,7 +185,7 @@ impl Context<'_> {
         (line, column)
     }
 
-    fn error(&self, span: &Range<usize>, field: &str, message: String) -> SceneError {
+    pub(crate) fn error(&self, span: &Range<usize>, field: &str, message: String) -> SceneError {
         let (line, column) = self.line_col(span.start);
         SceneError {
             file: self.origin.to_string(),
@@ -206,7 +205,7 @@ impl Context<'_> {
         }
     }
 
-    fn positive(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+    pub(crate) fn positive(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
         let v = *value.get_ref();
         if v.is_finite() && v > 0.0 {
             Ok(v)
@@ -318,43 +317,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
         let field = |key: &str| format!("material[{name}].{key}");
         let density = ctx.positive(&m.density, &field("density"))?;
-        let model = match m.model.get_ref().as_str() {
-            "linear-elastic" => {
-                let need = |v: Option<&'_ Spanned<f64>>,
-                            key: &str|
-                 -> Result<(f64, Range<usize>), SceneError> {
-                    v.map(|x| (*x.get_ref(), x.span())).ok_or_else(|| {
-                        ctx.error(
-                            &m.model.span(),
-                            &field(key),
-                            "is required by model `linear-elastic`".to_string(),
-                        )
-                    })
-                };
-                let e = need(m.youngs_modulus.as_ref(), "youngs_modulus")?;
-                let nu = need(m.poisson_ratio.as_ref(), "poisson_ratio")?;
-                let elastic = LinearElastic::new(e.0, nu.0).map_err(|err| {
-                    let span = if err.parameter == "poisson_ratio" {
-                        nu.1.clone()
-                    } else {
-                        e.1.clone()
-                    };
-                    ctx.error(
-                        &span,
-                        &field(err.parameter),
-                        format!("{} is not allowed: must be {}", err.value, err.expected),
-                    )
-                })?;
-                MaterialModel::LinearElastic(elastic)
-            }
-            other => {
-                return Err(ctx.error(
-                    &m.model.span(),
-                    &field("model"),
-                    format!("unknown material model `{other}`; available: `linear-elastic`"),
-                ))
-            }
-        };
+        let model = crate::scene_material::material_model(ctx, m, &field)?;
         materials.push(MaterialDescription {
             name,
             density,
@@ -432,9 +395,38 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 format!("probe `{}` is defined twice", t.name.get_ref()),
             ));
         }
-        probes.push(build_probe::<D>(ctx, t, body, &bodies[body])?);
+        probes.push(build_probe::<D>(ctx, t, body, &bodies[body], &materials)?);
     }
 
+    let mut effects = EffectsDescription::<D>::default();
+    for w in &file.wall {
+        let name = w.name.get_ref().clone();
+        if !is_safe_file_stem(&name) || effects.walls.iter().any(|x| x.name == name) {
+            return Err(ctx.error(
+                &w.name.span(),
+                "wall.name",
+                format!("`{name}` must be unique and a plain name (letters, digits, -, _, .)"),
+            ));
+        }
+        let point = ctx.vector::<D>(&w.point, &format!("wall[{name}].point"))?;
+        let normal = ctx.vector::<D>(&w.normal, &format!("wall[{name}].normal"))?;
+        if normal.norm() == 0.0 {
+            return Err(ctx.error(
+                &w.normal.span(),
+                &format!("wall[{name}].normal"),
+                "must not be zero".into(),
+            ));
+        }
+        effects.walls.push(WallDescription {
+            name,
+            point,
+            normal,
+        });
+    }
+    if let Some(h) = &file.hourglass_control {
+        effects.hourglass_control =
+            Some(ctx.positive(&h.coefficient, "hourglass_control.coefficient")?);
+    }
     let output = OutputSpec {
         dir: file
             .output
@@ -460,6 +452,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             materials,
             bodies,
             boundaries,
+            effects,
         },
         probes,
         output,
@@ -818,6 +811,7 @@ fn build_probe<const D: usize>(
     t: &ProbeTable,
     body_index: usize,
     body: &BodyDescription<D>,
+    materials: &[MaterialDescription],
 ) -> Result<ProbeSpec, SceneError> {
     let name = t.name.get_ref().clone();
     let field = |key: &str| format!("probe[{name}].{key}");
@@ -828,6 +822,17 @@ fn build_probe<const D: usize>(
         let parsed: ParticleField = f
             .parse()
             .map_err(|e: String| ctx.error(&t.fields.span(), &field("fields"), e))?;
+        if parsed == ParticleField::Temperature && !materials[body.material].model.has_temperature()
+        {
+            return Err(ctx.error(
+                &t.fields.span(),
+                &field("fields"),
+                format!(
+                    "`temperature` needs adiabatic heating in the material of body `{}` (specific_heat)",
+                    body.name
+                ),
+            ));
+        }
         if !parsed.exists_in(D) {
             return Err(ctx.error(
                 &t.fields.span(),

@@ -20,6 +20,26 @@ pub(crate) struct SceneFile {
     pub probe: Vec<ProbeTable>,
     #[serde(default)]
     pub output: Option<OutputTable>,
+    #[serde(default)]
+    pub wall: Vec<WallTable>,
+    #[serde(default)]
+    pub hourglass_control: Option<HourglassTable>,
+}
+
+/// `[[wall]]`: a rigid frictionless plane.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WallTable {
+    pub name: Spanned<String>,
+    pub point: Spanned<Vec<f64>>,
+    pub normal: Spanned<Vec<f64>>,
+}
+
+/// `[hourglass_control]`: Ganzenmüller's penalty.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct HourglassTable {
+    pub coefficient: Spanned<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -43,6 +63,39 @@ pub(crate) struct MaterialTable {
     pub density: Spanned<f64>,
     pub youngs_modulus: Option<Spanned<f64>>,
     pub poisson_ratio: Option<Spanned<f64>>,
+    // elastic-plastic (von Mises)
+    pub yield_stress: Option<Spanned<f64>>,
+    pub tangent_modulus: Option<Spanned<f64>>,
+    pub plastic_modulus: Option<Spanned<f64>>,
+    // johnson-cook
+    pub a: Option<Spanned<f64>>,
+    pub b: Option<Spanned<f64>>,
+    pub n: Option<Spanned<f64>>,
+    pub c: Option<Spanned<f64>>,
+    pub m: Option<Spanned<f64>>,
+    pub reference_strain_rate: Option<Spanned<f64>>,
+    pub melt_temperature: Option<Spanned<f64>>,
+    pub accurate_iteration: Option<Spanned<bool>>,
+    // shared by the plastic models
+    pub room_temperature: Option<Spanned<f64>>,
+    pub specific_heat: Option<Spanned<f64>>,
+    pub min_pressure: Option<Spanned<f64>>,
+    pub eos: Option<Spanned<EosTable>>,
+}
+
+/// `eos = { model = "...", ... }` of a plastic material.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct EosTable {
+    pub model: String,
+    pub bulk_modulus: Option<f64>,
+    pub coefficients: Option<Vec<f64>>,
+    pub sound_speed: Option<f64>,
+    pub s1: Option<f64>,
+    pub s2: Option<f64>,
+    pub s3: Option<f64>,
+    pub gamma0: Option<f64>,
+    pub a: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

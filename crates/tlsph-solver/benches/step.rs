@@ -47,6 +47,7 @@ fn block(n: usize, formulation: Formulation) -> Simulation<3> {
             velocities,
         }],
         boundaries: vec![],
+        effects: Default::default(),
     };
     let mut sim = Simulation::new(model).expect("valid model");
     sim.step().expect("first step");

@@ -58,6 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             velocity: Vector::<1>::zeros(),
             components: [true],
         }],
+        effects: Default::default(),
     };
 
     let mut sim = Simulation::new(model)?;

@@ -4,7 +4,7 @@
 use tlsph_math::Vector3;
 
 /// Energies and momenta at one instant.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Diagnostics {
     /// Simulated time \[s\].
     pub time: f64,
@@ -16,11 +16,17 @@ pub struct Diagnostics {
     pub linear_momentum: Vector3,
     /// Σ m x × v about the origin [kg m²/s], padded to 3D.
     pub angular_momentum: Vector3,
+    /// Energy booked for each declared effect (name, −∫ Σ f·v dt \[J\]): what the mechanism
+    /// has taken out of the particles, stored (wall penalty) or dissipated (hourglass control).
+    pub effect_energies: Vec<(String, f64)>,
+    /// Resultant force of each effect that reports one (walls: the reaction on the particles)
+    /// \[N\], padded to 3D.
+    pub effect_forces: Vec<(String, Vector3)>,
 }
 
 impl Diagnostics {
-    /// Kinetic + internal energy \[J\].
+    /// Kinetic + internal + booked effect energy \[J\]: constant up to time-integration error.
     pub fn total_energy(&self) -> f64 {
-        self.kinetic + self.internal
+        self.kinetic + self.internal + self.effect_energies.iter().map(|(_, e)| e).sum::<f64>()
     }
 }

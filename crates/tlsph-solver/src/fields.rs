@@ -25,6 +25,10 @@ pub enum ParticleField {
     Jacobian,
     /// Specific internal energy \[J/kg\].
     InternalEnergy,
+    /// Effective plastic strain ε̄p (0 in elastic bodies).
+    PlasticStrain,
+    /// Temperature \[K\] (bodies with adiabatic heating only).
+    Temperature,
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -52,6 +56,8 @@ impl ParticleField {
         "density",
         "jacobian",
         "internal_energy",
+        "plastic_strain",
+        "temperature",
     ];
 
     /// Whether the field exists in a `dimension`-D run (vector components beyond the
@@ -78,6 +84,8 @@ impl fmt::Display for ParticleField {
             ParticleField::Density => f.write_str("density"),
             ParticleField::Jacobian => f.write_str("jacobian"),
             ParticleField::InternalEnergy => f.write_str("internal_energy"),
+            ParticleField::PlasticStrain => f.write_str("plastic_strain"),
+            ParticleField::Temperature => f.write_str("temperature"),
         }
     }
 }
@@ -99,6 +107,8 @@ impl FromStr for ParticleField {
             "density" => ParticleField::Density,
             "jacobian" => ParticleField::Jacobian,
             "internal_energy" => ParticleField::InternalEnergy,
+            "plastic_strain" => ParticleField::PlasticStrain,
+            "temperature" => ParticleField::Temperature,
             _ => {
                 let (prefix, suffix) = s.rsplit_once('_').ok_or_else(unknown)?;
                 let chars: Vec<char> = suffix.chars().collect();

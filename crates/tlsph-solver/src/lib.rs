@@ -12,10 +12,12 @@
 
 mod bonds;
 mod diagnostics;
+mod effects;
 mod error;
 mod fields;
 mod model;
 mod particles;
+mod plasticity;
 mod simulation;
 mod step;
 
@@ -24,8 +26,9 @@ pub use diagnostics::Diagnostics;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    BodyDescription, BoundaryDescription, Formulation, MaterialDescription, MaterialModel, Model,
-    SimulationConfig, StressUpdate,
+    BodyDescription, BoundaryDescription, EffectsDescription, ElasticPlastic, Formulation,
+    MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
+    StressUpdate, Thermal, WallDescription,
 };
 pub use simulation::{BodyInfo, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

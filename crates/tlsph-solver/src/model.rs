@@ -2,7 +2,7 @@
 //! or directly in code; consumed once by `Simulation::new`.
 
 use tlsph_kernels::KernelKind;
-use tlsph_materials::LinearElastic;
+use tlsph_materials::{EquationOfState, JohnsonCookStrength, LinearElastic, VonMisesPlasticity};
 use tlsph_math::Vector;
 
 /// How kernel gradients are formed in the reference configuration (numerics.md §5).
@@ -68,6 +68,67 @@ pub struct SimulationConfig {
 pub enum MaterialModel {
     /// Isotropic linear elasticity (R 5.73–5.75).
     LinearElastic(LinearElastic),
+    /// Hypoelastic–plastic hydrocode material: Jaumann-rate elastic deviator with a von Mises
+    /// or Johnson–Cook return map, pressure from the bulk modulus or an equation of state
+    /// (numerics.md §8.3–8.5, §8.7–8.9).
+    ElasticPlastic(ElasticPlastic),
+}
+
+/// Deviatoric strength law (numerics.md §8.4–8.5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StrengthModel {
+    /// Von Mises with linear isotropic hardening (perfectly plastic when E_p = 0).
+    VonMises(VonMisesPlasticity),
+    /// Johnson–Cook flow stress; `iterate` selects the "accurate" consistency iteration.
+    JohnsonCook {
+        /// The flow-stress law.
+        model: JohnsonCookStrength,
+        /// Solve the consistency condition (deck IT = 1) instead of one radial return.
+        iterate: bool,
+    },
+}
+
+/// How the pressure of an elastic–plastic material is obtained (numerics.md §8.3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PressureModel {
+    /// Hypoelastic: ṗ = −K tr D with the bulk modulus of the elastic constants.
+    Hypoelastic,
+    /// An equation of state p(μ, E_v), μ = 1/J − 1, E_v = ρ0 e.
+    Eos(EquationOfState),
+}
+
+/// Adiabatic heating by plastic work (numerics.md §8.5): ΔT = σ̄ Δε̄p / (ρ c_v).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thermal {
+    /// Specific heat c_v \[J/(kg K)\].
+    pub specific_heat: f64,
+    /// Initial (room) temperature \[K\].
+    pub room_temperature: f64,
+}
+
+/// An elastic–plastic hydrocode material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElasticPlastic {
+    /// Elastic constants (G for the deviator, K for the hypoelastic pressure).
+    pub elastic: LinearElastic,
+    /// Deviatoric strength.
+    pub strength: StrengthModel,
+    /// Pressure law.
+    pub pressure: PressureModel,
+    /// Pressure cutoff in tension: p ← max(p, p_min) (numerics.md §8.9 type 1) \[Pa\].
+    pub min_pressure: Option<f64>,
+    /// Temperature from plastic work; absent: the temperature stays at the room value.
+    pub thermal: Option<Thermal>,
+}
+
+impl ElasticPlastic {
+    /// Bulk modulus at the reference state \[Pa\]: the EOS's, or the elastic one.
+    pub fn bulk_modulus(&self) -> f64 {
+        match &self.pressure {
+            PressureModel::Hypoelastic => self.elastic.bulk_modulus(),
+            PressureModel::Eos(eos) => eos.bulk_modulus_at_reference(),
+        }
+    }
 }
 
 impl MaterialModel {
@@ -75,7 +136,20 @@ impl MaterialModel {
     pub fn longitudinal_modulus(&self) -> f64 {
         match self {
             MaterialModel::LinearElastic(m) => m.longitudinal_modulus(),
+            MaterialModel::ElasticPlastic(m) => {
+                m.bulk_modulus() + 4.0 / 3.0 * m.elastic.shear_modulus()
+            }
         }
+    }
+
+    /// Whether the model carries an effective plastic strain.
+    pub fn has_plastic_strain(&self) -> bool {
+        matches!(self, MaterialModel::ElasticPlastic(_))
+    }
+
+    /// Whether the model carries a temperature.
+    pub fn has_temperature(&self) -> bool {
+        matches!(self, MaterialModel::ElasticPlastic(m) if m.thermal.is_some())
     }
 }
 
@@ -124,6 +198,26 @@ pub struct BoundaryDescription<const D: usize> {
     pub components: [bool; D],
 }
 
+/// A rigid frictionless plane (numerics.md §13; an anvil).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallDescription<const D: usize> {
+    /// Name (its reaction is reported as `wall_<name>`).
+    pub name: String,
+    /// A point of the plane \[m\].
+    pub point: Vector<D>,
+    /// Normal pointing into the half-space where the particles are (need not be unit).
+    pub normal: Vector<D>,
+}
+
+/// Optional effects of a run; absent effects cost nothing.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct EffectsDescription<const D: usize> {
+    /// Rigid frictionless walls acting on every body.
+    pub walls: Vec<WallDescription<D>>,
+    /// Ganzenmüller hourglass control coefficient α (numerics.md §10.5).
+    pub hourglass_control: Option<f64>,
+}
+
 /// Everything needed to start a simulation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Model<const D: usize> {
@@ -135,4 +229,6 @@ pub struct Model<const D: usize> {
     pub bodies: Vec<BodyDescription<D>>,
     /// Prescribed-velocity sets.
     pub boundaries: Vec<BoundaryDescription<D>>,
+    /// Optional effects.
+    pub effects: EffectsDescription<D>,
 }

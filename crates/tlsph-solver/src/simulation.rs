@@ -3,10 +3,12 @@
 
 use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
 use crate::diagnostics::Diagnostics;
+use crate::effects::{BookedEffect, EffectContext, HourglassControl, RigidWall};
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
+use crate::plasticity::{update_elastic_plastic, PlasticState};
 use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
     ConstitutiveStep,
@@ -26,6 +28,8 @@ pub struct BodyInfo {
     pub range: Range<usize>,
     /// Index of its material.
     pub material: usize,
+    /// Particle spacing Δx \[m\].
+    pub spacing: f64,
     /// Smoothing length h \[m\].
     pub smoothing_length: f64,
     /// Reference density ρ0 \[kg/m³\].
@@ -68,6 +72,14 @@ pub struct Simulation<const D: usize> {
     particles: Particles<D>,
     bonds: Bonds<D>,
     prescribed: Vec<PrescribedSet<D>>,
+    /// Plastic state per body (empty for elastic bodies).
+    plastic: Vec<PlasticState>,
+    /// Declared effects with their booked energies (empty when none is declared).
+    effects: Vec<BookedEffect<D>>,
+    /// Accelerations of one effect (allocated only when effects are declared).
+    effect_scratch: Vec<Vector<D>>,
+    /// Per-chunk partial sums for deterministic reductions (allocated with the effects).
+    chunk_sums: Vec<(f64, Vector<D>)>,
     correction: CorrectionReport,
     time: f64,
     /// Steps completed (0 before the first call to `step`).
@@ -113,6 +125,7 @@ impl<const D: usize> Simulation<D> {
                 name: body.name.clone(),
                 range: first..particles.len(),
                 material: body.material,
+                spacing: body.spacing,
                 smoothing_length: config.smoothing_factor * body.spacing,
                 density0: material.density,
                 sound_speed0: (material.model.longitudinal_modulus() / material.density).sqrt(),
@@ -176,13 +189,42 @@ impl<const D: usize> Simulation<D> {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        if config.stress_update == StressUpdate::GreenLagrange {
+            if let Some(m) = model
+                .materials
+                .iter()
+                .find(|m| m.model.has_plastic_strain())
+            {
+                return Err(SetupError::InvalidConfig {
+                    field: "stress_update",
+                    message: format!(
+                        "material `{}` is elastic-plastic, which needs stress_update = \"jaumann-rate\" (the Green-Lagrange path is hyperelastic only)",
+                        m.name
+                    ),
+                });
+            }
+        }
+        let plastic = bodies
+            .iter()
+            .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
+            .collect();
+        let effects = build_effects(&model, &bodies, &particles, &bonds)?;
+        let n_effect = if effects.is_empty() {
+            0
+        } else {
+            particles.len()
+        };
         let mut sim = Self {
+            effect_scratch: vec![Vector::zeros(); n_effect],
+            chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
+            effects,
             config,
             materials: model.materials.iter().map(|m| m.model).collect(),
             bodies,
             particles,
             bonds,
             prescribed,
+            plastic,
             correction,
             time: 0.0,
             steps_done: 0,
@@ -209,18 +251,23 @@ impl<const D: usize> Simulation<D> {
         }
         let step = self.steps_done;
         gather_kinematics(&self.bonds, &mut self.particles);
-        for info in &self.bodies {
+        for (b, info) in self.bodies.iter().enumerate() {
             let constitutive = ConstitutiveStep {
                 range: info.range.clone(),
                 density0: info.density0,
                 dt,
             };
+            let particles = &mut self.particles;
             match (&self.materials[info.material], self.config.stress_update) {
                 (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => {
-                    update_jaumann_rate(m, &constitutive, &mut self.particles)
+                    update_jaumann_rate(m, &constitutive, particles)
                 }
                 (MaterialModel::LinearElastic(m), StressUpdate::GreenLagrange) => {
-                    update_green_lagrange(m, &constitutive, &mut self.particles)
+                    update_green_lagrange(m, &constitutive, particles)
+                }
+                // Rejected at setup for the Green–Lagrange path.
+                (MaterialModel::ElasticPlastic(m), _) => {
+                    update_elastic_plastic(m, &constitutive, particles, &mut self.plastic[b])
                 }
             }
         }
@@ -246,6 +293,7 @@ impl<const D: usize> Simulation<D> {
         // first half step).
         let kick = 0.5 * (dt + next_dt);
         gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick);
+        self.apply_effects(kick);
         // Prescribed components: zero their acceleration; their kicked velocity is overwritten
         // by `impose_velocities`, so kicking before zeroing changes nothing.
         for set in &self.prescribed {
@@ -310,6 +358,52 @@ impl<const D: usize> Simulation<D> {
             dt
         };
         (dt, best.1)
+    }
+
+    /// Adds every declared effect's accelerations at t^n, kicks with them, and books their
+    /// work −Σ m a·v^n Δt* (v^n = v^{n+½} − ½Δt* a, time-centred) and resultant force, both
+    /// summed in fixed chunks so the result does not depend on the thread count.
+    fn apply_effects(&mut self, kick: f64) {
+        for booked in &mut self.effects {
+            self.effect_scratch.fill(Vector::zeros());
+            let ctx = EffectContext {
+                particles: &self.particles,
+                bonds: &self.bonds,
+            };
+            booked.effect.accelerations(&ctx, &mut self.effect_scratch);
+            let p = &mut self.particles;
+            let masses = &p.masses;
+            p.accelerations
+                .par_chunks_mut(CHUNK)
+                .zip(p.velocities.par_chunks_mut(CHUNK))
+                .zip(self.effect_scratch.par_chunks(CHUNK))
+                .enumerate()
+                .map(|(c, ((a, v), s))| {
+                    let mut work = 0.0;
+                    let mut force = Vector::<D>::zeros();
+                    for k in 0..s.len() {
+                        let m = masses[c * CHUNK + k];
+                        a[k] += s[k];
+                        v[k] += s[k] * kick;
+                        let v_mid = v[k] - a[k] * (0.5 * kick);
+                        work += m * s[k].dot(&v_mid) * kick;
+                        force += s[k] * m;
+                    }
+                    (work, force)
+                })
+                .collect_into_vec(&mut self.chunk_sums);
+            let (work, force) = self
+                .chunk_sums
+                .iter()
+                .fold((0.0, Vector::<D>::zeros()), |(w, f), (cw, cf)| {
+                    (w + cw, f + cf)
+                });
+            booked.energy = match booked.effect.stored_energy() {
+                Some(stored) => stored,
+                None => booked.energy - work,
+            };
+            booked.effect.set_resultant(force);
+        }
     }
 
     fn impose_velocities(&mut self) {
@@ -493,7 +587,32 @@ impl<const D: usize> Simulation<D> {
             }
             ParticleField::Jacobian => p.jacobian[i],
             ParticleField::InternalEnergy => p.internal_energy[i],
+            ParticleField::PlasticStrain => {
+                let b = self.body_of(i);
+                let k = i - self.bodies[b].range.start;
+                // Elastic bodies have no plastic strain: 0 is the true value.
+                self.plastic[b].plastic_strain(k).unwrap_or(0.0)
+            }
+            ParticleField::Temperature => {
+                let b = self.body_of(i);
+                let k = i - self.bodies[b].range.start;
+                self.plastic[b].temperature(k).unwrap_or(f64::NAN)
+            }
         }
+    }
+
+    /// Whether any body tracks a temperature (adiabatic heating declared).
+    pub fn has_temperature(&self) -> bool {
+        self.plastic
+            .iter()
+            .any(|s| matches!(s, PlasticState::StrainTemperature(_)))
+    }
+
+    /// Whether any body carries an effective plastic strain.
+    pub fn has_plastic_strain(&self) -> bool {
+        self.plastic
+            .iter()
+            .any(|s| !matches!(s, PlasticState::None))
     }
 
     /// Index of the body that owns global particle `i`.
@@ -520,8 +639,104 @@ impl<const D: usize> Simulation<D> {
             d.linear_momentum += v * m;
             d.angular_momentum += x.cross(&v) * m;
         }
+        for booked in &self.effects {
+            let name = booked.effect.name().to_string();
+            if let Some(f) = booked.effect.resultant() {
+                d.effect_forces.push((name.clone(), vector_to_3d(&f)));
+            }
+            d.effect_energies.push((name, booked.energy));
+        }
         d
     }
+}
+
+/// Chunk length of deterministic parallel reductions and searches.
+const CHUNK: usize = 4096;
+
+/// Builds the declared effects (none declared: an empty list, nothing allocated).
+fn build_effects<const D: usize>(
+    model: &Model<D>,
+    bodies: &[BodyInfo],
+    particles: &Particles<D>,
+    bonds: &Bonds<D>,
+) -> Result<Vec<BookedEffect<D>>, SetupError> {
+    let mut effects: Vec<BookedEffect<D>> = Vec::new();
+    let n = particles.len();
+    let body_of = |i: usize| {
+        bodies
+            .iter()
+            .position(|b| b.range.contains(&i))
+            .expect("every particle belongs to a body")
+    };
+    let per_particle = |f: &dyn Fn(&BodyInfo) -> f64| -> Vec<f64> {
+        (0..n).map(|i| f(&bodies[body_of(i)])).collect()
+    };
+    for wall in &model.effects.walls {
+        if !(wall.normal.norm() > 0.0
+            && wall
+                .normal
+                .iter()
+                .chain(wall.point.iter())
+                .all(|x| x.is_finite()))
+        {
+            return Err(SetupError::InvalidConfig {
+                field: "wall",
+                message: format!(
+                    "wall `{}` needs a finite point and a non-zero normal",
+                    wall.name
+                ),
+            });
+        }
+        let h = per_particle(&|b| b.smoothing_length);
+        let c0 = per_particle(&|b| b.sound_speed0);
+        let dx = per_particle(&|b| b.spacing);
+        effects.push(BookedEffect {
+            effect: Box::new(RigidWall::new(
+                &wall.name,
+                wall.point,
+                wall.normal,
+                &h,
+                &c0,
+                &dx,
+            )),
+            energy: 0.0,
+        });
+    }
+    if let Some(alpha) = model.effects.hourglass_control {
+        if !(alpha.is_finite() && alpha > 0.0) {
+            return Err(SetupError::InvalidConfig {
+                field: "hourglass_control",
+                message: format!("coefficient must be > 0, got {alpha}"),
+            });
+        }
+        let kernels: Vec<_> = bodies
+            .iter()
+            .map(|b| model.config.kernel.build(D, b.smoothing_length))
+            .collect::<Result<_, _>>()
+            .map_err(|e| SetupError::Kernel(e.to_string()))?;
+        let youngs: Vec<f64> = bodies
+            .iter()
+            .map(|b| match &model.materials[b.material].model {
+                MaterialModel::LinearElastic(m) => m.youngs_modulus(),
+                MaterialModel::ElasticPlastic(m) => m.elastic.youngs_modulus(),
+            })
+            .collect();
+        let hourglass = HourglassControl::new(
+            alpha,
+            &particles.positions0,
+            &particles.volumes0,
+            &particles.masses,
+            &bonds.offsets,
+            &bonds.neighbours,
+            |i| kernels[body_of(i)],
+            |i| youngs[body_of(i)],
+        );
+        effects.push(BookedEffect {
+            effect: Box::new(hourglass),
+            energy: 0.0,
+        });
+    }
+    Ok(effects)
 }
 
 /// Index of the first item that satisfies `pred`, searched in parallel by chunks.
@@ -529,7 +744,6 @@ impl<const D: usize> Simulation<D> {
 /// Cheaper than `position_first` on a flat iterator, which synchronises per item; the answer is
 /// the same (the lowest index) for any thread count.
 fn first_index_where<T: Sync>(items: &[T], pred: impl Fn(&T) -> bool + Sync) -> Option<usize> {
-    const CHUNK: usize = 4096;
     items
         .par_chunks(CHUNK)
         .enumerate()

@@ -10,7 +10,7 @@ use tlsph_materials::LinearElastic;
 use tlsph_math::{embed_with_identity, embed_with_zeros, outer, project, sym, Tensor, Tensor3};
 
 /// Minimum particles per rayon task: below this, splitting costs more than it saves.
-const MIN_PARTICLES_PER_TASK: usize = 256;
+pub(crate) const MIN_PARTICLES_PER_TASK: usize = 256;
 
 /// F^n = I + Σ_J V0_J (u_J − u_I) ⊗ G̃_IJ and Ḟ^{n−½} = Σ_J V0_J (v_J − v_I) ⊗ G̃_IJ
 /// (R 4.7–4.8, 4.24; numerics.md §4.2–4.3), gathered per particle.
@@ -74,7 +74,7 @@ pub(crate) fn gather_accelerations_and_kick<const D: usize>(
 /// Minors and determinant use the same operations, in the same order, as nalgebra's
 /// `try_inverse` and `determinant` for 3x3.
 #[inline]
-fn cofactor_and_determinant(m: &Tensor3) -> (Tensor3, f64) {
+pub(crate) fn cofactor_and_determinant(m: &Tensor3) -> (Tensor3, f64) {
     let (m11, m12, m13) = (m[(0, 0)], m[(0, 1)], m[(0, 2)]);
     let (m21, m22, m23) = (m[(1, 0)], m[(1, 1)], m[(1, 2)]);
     let (m31, m32, m33) = (m[(2, 0)], m[(2, 1)], m[(2, 2)]);
@@ -101,7 +101,7 @@ fn cofactor_and_determinant(m: &Tensor3) -> (Tensor3, f64) {
 /// singular or not finite (as [`tlsph_math::inverse3`]). Bit-identical to nalgebra's
 /// `try_inverse` (each adjugate entry divided by det M) and `determinant`.
 #[inline]
-fn inverse_and_determinant(m: &Tensor3) -> (Option<Tensor3>, f64) {
+pub(crate) fn inverse_and_determinant(m: &Tensor3) -> (Option<Tensor3>, f64) {
     let (cofactor, det) = cofactor_and_determinant(m);
     if det == 0.0 {
         return (None, det);

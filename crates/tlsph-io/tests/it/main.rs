@@ -228,7 +228,14 @@ fn frames_are_written_as_vtu_with_a_pvd_index() {
     // Frames at t = 0, 0.05 and the end 0.1.
     assert_eq!(pvd.matches("<DataSet").count(), 3, "{pvd}");
     let vtu = fs::read_to_string(dir.join("frames/frame_00002.vtu")).unwrap();
-    for name in ["displacement", "velocity", "stress", "pressure", "von_mises", "density"] {
+    for name in [
+        "displacement",
+        "velocity",
+        "stress",
+        "pressure",
+        "von_mises",
+        "density",
+    ] {
         assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name}");
     }
     assert!(vtu.contains("NumberOfPoints=\"200\""));

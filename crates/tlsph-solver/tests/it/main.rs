@@ -2,6 +2,8 @@
 //! and failure reporting.
 
 mod allocation;
+mod effects;
+mod plasticity;
 
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;
@@ -74,6 +76,7 @@ fn model<const D: usize>(
             positions,
         }],
         boundaries: vec![],
+        effects: Default::default(),
     }
 }
 

@@ -1,0 +1,330 @@
+//! The `[[material]]` tables: which keys each model takes, and their conversion into solver
+//! material models with every parameter checked and located (numerics.md §8).
+
+use crate::scene::{Context, SceneError};
+use crate::scene_file::{EosTable, MaterialTable};
+use std::ops::Range;
+use tlsph_materials::eos::MieGruneisenParameters;
+use tlsph_materials::strength::JohnsonCookStrengthParameters;
+use tlsph_materials::{
+    EquationOfState, JohnsonCookStrength, LinearElastic, LinearEos, MaterialError, MieGruneisen,
+    PolynomialEos, VonMisesPlasticity,
+};
+use tlsph_solver::{ElasticPlastic, MaterialModel, PressureModel, StrengthModel, Thermal};
+use toml::Spanned;
+
+/// Material models and the keys each accepts beyond `name`, `model` and `density`.
+const MODELS: [(&str, &[&str]); 3] = [
+    ("linear-elastic", &["youngs_modulus", "poisson_ratio"]),
+    (
+        "elastic-plastic",
+        &[
+            "youngs_modulus",
+            "poisson_ratio",
+            "yield_stress",
+            "tangent_modulus",
+            "plastic_modulus",
+            "specific_heat",
+            "room_temperature",
+            "min_pressure",
+            "eos",
+        ],
+    ),
+    (
+        "johnson-cook",
+        &[
+            "youngs_modulus",
+            "poisson_ratio",
+            "a",
+            "b",
+            "n",
+            "c",
+            "m",
+            "reference_strain_rate",
+            "room_temperature",
+            "melt_temperature",
+            "accurate_iteration",
+            "specific_heat",
+            "min_pressure",
+            "eos",
+        ],
+    ),
+];
+
+/// Every optional key of a material table with its span, for "not a parameter of" checks.
+fn given_keys(m: &MaterialTable) -> Vec<(&'static str, Range<usize>)> {
+    let mut keys = Vec::new();
+    let mut push = |name: &'static str, span: Option<Range<usize>>| {
+        if let Some(span) = span {
+            keys.push((name, span));
+        }
+    };
+    let f = |v: &Option<Spanned<f64>>| v.as_ref().map(|x| x.span());
+    push("youngs_modulus", f(&m.youngs_modulus));
+    push("poisson_ratio", f(&m.poisson_ratio));
+    push("yield_stress", f(&m.yield_stress));
+    push("tangent_modulus", f(&m.tangent_modulus));
+    push("plastic_modulus", f(&m.plastic_modulus));
+    push("a", f(&m.a));
+    push("b", f(&m.b));
+    push("n", f(&m.n));
+    push("c", f(&m.c));
+    push("m", f(&m.m));
+    push("reference_strain_rate", f(&m.reference_strain_rate));
+    push("melt_temperature", f(&m.melt_temperature));
+    push(
+        "accurate_iteration",
+        m.accurate_iteration.as_ref().map(|x| x.span()),
+    );
+    push("room_temperature", f(&m.room_temperature));
+    push("specific_heat", f(&m.specific_heat));
+    push("min_pressure", f(&m.min_pressure));
+    push("eos", m.eos.as_ref().map(|x| x.span()));
+    keys
+}
+
+/// Converts one `[[material]]` table into a solver material model.
+pub(crate) fn material_model(
+    ctx: &Context<'_>,
+    m: &MaterialTable,
+    field: &dyn Fn(&str) -> String,
+) -> Result<MaterialModel, SceneError> {
+    let model_name = m.model.get_ref().as_str();
+    let Some((_, allowed)) = MODELS.iter().find(|(name, _)| *name == model_name) else {
+        let names: Vec<&str> = MODELS.iter().map(|(n, _)| *n).collect();
+        return Err(ctx.error(
+            &m.model.span(),
+            &field("model"),
+            format!(
+                "unknown material model `{model_name}`; available: {}",
+                names.join(", ")
+            ),
+        ));
+    };
+    for (key, span) in given_keys(m) {
+        if !allowed.contains(&key) {
+            return Err(ctx.error(
+                &span,
+                &field(key),
+                format!(
+                    "is not a parameter of model `{model_name}` (its keys: {})",
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    let need = |v: &Option<Spanned<f64>>, key: &str| -> Result<(f64, Range<usize>), SceneError> {
+        v.as_ref().map(|x| (*x.get_ref(), x.span())).ok_or_else(|| {
+            ctx.error(
+                &m.model.span(),
+                &field(key),
+                format!("is required by model `{model_name}`"),
+            )
+        })
+    };
+    // Locates a MaterialError at the key it names (falls back to the model line).
+    let locate = |err: MaterialError| {
+        let span = given_keys(m)
+            .into_iter()
+            .find(|(k, _)| *k == err.parameter)
+            .map_or(m.model.span(), |(_, s)| s);
+        ctx.error(
+            &span,
+            &field(err.parameter),
+            format!("{} is not allowed: must be {}", err.value, err.expected),
+        )
+    };
+    let e = need(&m.youngs_modulus, "youngs_modulus")?;
+    let nu = need(&m.poisson_ratio, "poisson_ratio")?;
+    let elastic = LinearElastic::new(e.0, nu.0).map_err(locate)?;
+    if model_name == "linear-elastic" {
+        return Ok(MaterialModel::LinearElastic(elastic));
+    }
+    let optional = |v: &Option<Spanned<f64>>| v.as_ref().map(|x| *x.get_ref());
+    let strength = if model_name == "elastic-plastic" {
+        let yield_stress = need(&m.yield_stress, "yield_stress")?.0;
+        let vm = match (&m.tangent_modulus, &m.plastic_modulus) {
+            (Some(t), None) => {
+                VonMisesPlasticity::from_tangent_modulus(yield_stress, e.0, *t.get_ref())
+            }
+            (None, Some(p)) => VonMisesPlasticity::new(yield_stress, *p.get_ref()),
+            (None, None) => VonMisesPlasticity::new(yield_stress, 0.0),
+            (Some(t), Some(_)) => {
+                return Err(ctx.error(
+                    &t.span(),
+                    &field("tangent_modulus"),
+                    "give tangent_modulus or plastic_modulus, not both".into(),
+                ))
+            }
+        }
+        .map_err(locate)?;
+        StrengthModel::VonMises(vm)
+    } else {
+        let parameters = JohnsonCookStrengthParameters {
+            a: need(&m.a, "a")?.0,
+            b: need(&m.b, "b")?.0,
+            n: need(&m.n, "n")?.0,
+            c: need(&m.c, "c")?.0,
+            m: need(&m.m, "m")?.0,
+            reference_strain_rate: need(&m.reference_strain_rate, "reference_strain_rate")?.0,
+            room_temperature: need(&m.room_temperature, "room_temperature")?.0,
+            melt_temperature: need(&m.melt_temperature, "melt_temperature")?.0,
+        };
+        StrengthModel::JohnsonCook {
+            model: JohnsonCookStrength::new(parameters).map_err(locate)?,
+            iterate: m.accurate_iteration.as_ref().is_none_or(|x| *x.get_ref()),
+        }
+    };
+    let thermal = match &m.specific_heat {
+        None => None,
+        Some(cv) => {
+            let specific_heat = ctx.positive(cv, &field("specific_heat"))?;
+            let room_temperature = match &m.room_temperature {
+                Some(t) => {
+                    let value = *t.get_ref();
+                    if !(value.is_finite() && value >= 0.0) {
+                        return Err(ctx.error(
+                            &t.span(),
+                            &field("room_temperature"),
+                            format!("must be ≥ 0 K, got {value}"),
+                        ));
+                    }
+                    value
+                }
+                None => {
+                    return Err(ctx.error(
+                        &cv.span(),
+                        &field("room_temperature"),
+                        "is required with specific_heat (initial temperature)".into(),
+                    ))
+                }
+            };
+            Some(Thermal {
+                specific_heat,
+                room_temperature,
+            })
+        }
+    };
+    let min_pressure = match optional(&m.min_pressure) {
+        Some(p) if !p.is_finite() => {
+            return Err(ctx.error(
+                &m.min_pressure.as_ref().map_or(m.model.span(), |x| x.span()),
+                &field("min_pressure"),
+                "must be finite".into(),
+            ))
+        }
+        other => other,
+    };
+    let pressure = match &m.eos {
+        None => PressureModel::Hypoelastic,
+        Some(t) => PressureModel::Eos(eos(ctx, t, field, e.0.max(0.0), m)?),
+    };
+    Ok(MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic,
+        strength,
+        pressure,
+        min_pressure,
+        thermal,
+    }))
+}
+
+fn eos(
+    ctx: &Context<'_>,
+    t: &Spanned<EosTable>,
+    field: &dyn Fn(&str) -> String,
+    _youngs_modulus: f64,
+    m: &MaterialTable,
+) -> Result<EquationOfState, SceneError> {
+    let span = t.span();
+    let e = t.get_ref();
+    let need = |v: Option<f64>, key: &str| {
+        v.ok_or_else(|| {
+            ctx.error(
+                &span,
+                &field(&format!("eos.{key}")),
+                format!("is required by EOS model `{}`", e.model),
+            )
+        })
+    };
+    let locate = |err: MaterialError| {
+        ctx.error(
+            &span,
+            &field(&format!("eos.{}", err.parameter)),
+            format!("{} is not allowed: must be {}", err.value, err.expected),
+        )
+    };
+    let unexpected = |keys: &[(&str, bool)]| -> Result<(), SceneError> {
+        for (k, given) in keys {
+            if *given {
+                return Err(ctx.error(
+                    &span,
+                    &field(&format!("eos.{k}")),
+                    format!("is not a parameter of EOS model `{}`", e.model),
+                ));
+            }
+        }
+        Ok(())
+    };
+    match e.model.as_str() {
+        "linear" => {
+            unexpected(&[
+                ("coefficients", e.coefficients.is_some()),
+                ("sound_speed", e.sound_speed.is_some()),
+                ("s1", e.s1.is_some()),
+                ("gamma0", e.gamma0.is_some()),
+            ])?;
+            Ok(EquationOfState::Linear(
+                LinearEos::new(need(e.bulk_modulus, "bulk_modulus")?).map_err(locate)?,
+            ))
+        }
+        "polynomial" => {
+            unexpected(&[
+                ("bulk_modulus", e.bulk_modulus.is_some()),
+                ("sound_speed", e.sound_speed.is_some()),
+                ("s1", e.s1.is_some()),
+                ("gamma0", e.gamma0.is_some()),
+            ])?;
+            let c = e.coefficients.as_ref().ok_or_else(|| {
+                ctx.error(
+                    &span,
+                    &field("eos.coefficients"),
+                    "is required by EOS model `polynomial`: [C0, C1, ..., C6]".into(),
+                )
+            })?;
+            if c.len() != 7 {
+                return Err(ctx.error(
+                    &span,
+                    &field("eos.coefficients"),
+                    format!("needs 7 values C0..C6, got {}", c.len()),
+                ));
+            }
+            let array: [f64; 7] = std::array::from_fn(|k| c[k]);
+            Ok(EquationOfState::Polynomial(
+                PolynomialEos::new(array).map_err(locate)?,
+            ))
+        }
+        "mie-gruneisen" => {
+            unexpected(&[
+                ("bulk_modulus", e.bulk_modulus.is_some()),
+                ("coefficients", e.coefficients.is_some()),
+            ])?;
+            let parameters = MieGruneisenParameters {
+                reference_density: *m.density.get_ref(),
+                sound_speed: need(e.sound_speed, "sound_speed")?,
+                s1: need(e.s1, "s1")?,
+                s2: e.s2.unwrap_or(0.0),
+                s3: e.s3.unwrap_or(0.0),
+                gamma0: need(e.gamma0, "gamma0")?,
+                a: e.a.unwrap_or(0.0),
+            };
+            Ok(EquationOfState::MieGruneisen(
+                MieGruneisen::new(parameters).map_err(locate)?,
+            ))
+        }
+        other => Err(ctx.error(
+            &span,
+            &field("eos.model"),
+            format!("unknown EOS model `{other}`; available: linear, polynomial, mie-gruneisen"),
+        )),
+    }
+}

@@ -1,0 +1,67 @@
+//! Optional effects declared by a scene (rigid walls, hourglass control, ...). Each effect is
+//! one file; it owns its state, adds its accelerations once per step, votes on nothing it does
+//! not constrain, and has its work booked so total energy closes. An effect that a scene does
+//! not declare is not in the list: it allocates nothing and costs nothing.
+
+mod hourglass;
+mod rigid_wall;
+
+pub use hourglass::HourglassControl;
+pub use rigid_wall::RigidWall;
+
+use crate::bonds::Bonds;
+use crate::particles::Particles;
+use tlsph_math::Vector;
+
+/// Read-only view of the state at t^n that effects see.
+pub(crate) struct EffectContext<'a, const D: usize> {
+    /// Particle state (u^n, F^n, masses, ...).
+    pub particles: &'a Particles<D>,
+    /// Reference bonds.
+    pub bonds: &'a Bonds<D>,
+}
+
+/// An optional force contribution.
+pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
+    /// Name of the energy column booked for this effect in `energy.csv`.
+    fn name(&self) -> &str;
+
+    /// Writes this effect's accelerations at t^n into `out` (zeroed by the caller, one entry
+    /// per particle). Must be a gather per particle (deterministic for any thread count).
+    fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]);
+
+    /// Resultant force of the last step (e.g. the wall reaction), if the effect reports one.
+    fn resultant(&self) -> Option<Vector<D>> {
+        None
+    }
+
+    /// Records the resultant of the accelerations just computed.
+    fn set_resultant(&mut self, _force: Vector<D>) {}
+
+    /// Energy stored by a conservative effect at t^n (a penalty spring) \[J\]. When `Some`, it
+    /// is booked directly instead of integrating the work, which for stiff, impulsive forces
+    /// would carry the time-integration error of a few large steps.
+    fn stored_energy(&self) -> Option<f64> {
+        None
+    }
+
+    /// A boxed copy (simulations are `Clone`).
+    fn clone_box(&self) -> Box<dyn Effect<D>>;
+}
+
+/// An effect with its booked energy: −∫ Σ f·v dt, the energy the mechanism has taken out of
+/// the particles (stored in a penalty spring or dissipated).
+#[derive(Debug)]
+pub(crate) struct BookedEffect<const D: usize> {
+    pub effect: Box<dyn Effect<D>>,
+    pub energy: f64,
+}
+
+impl<const D: usize> Clone for BookedEffect<D> {
+    fn clone(&self) -> Self {
+        Self {
+            effect: self.effect.clone_box(),
+            energy: self.energy,
+        }
+    }
+}

@@ -1,0 +1,311 @@
+//! Constitutive update of elastic–plastic (hydrocode) materials for one body: Jaumann-rate
+//! elastic predictor of the deviator, pressure from the bulk modulus or an EOS, a return map,
+//! optional adiabatic heating. Monomorphised per (strength, pressure, state) combination, so
+//! the per-particle loop has no branch on the model (numerics.md §8.1, §8.3–8.5, §8.9).
+
+use crate::model::{ElasticPlastic, PressureModel, StrengthModel, Thermal};
+use crate::particles::Particles;
+use crate::step::{
+    cofactor_and_determinant, inverse_and_determinant, ConstitutiveStep, MIN_PARTICLES_PER_TASK,
+};
+use rayon::prelude::*;
+use tlsph_materials::{
+    equivalent_strain_rate, EquationOfState, JohnsonCookStrength, LinearEos, MieGruneisen,
+    PlasticReturn, PolynomialEos, VonMisesPlasticity,
+};
+use tlsph_math::{deviator, embed_with_identity, embed_with_zeros, project, sym, Tensor, Tensor3};
+
+/// Per-particle plastic state of a body: only what its material needs.
+#[derive(Debug, Clone)]
+pub(crate) enum PlasticState {
+    /// The body's material has no plastic state.
+    None,
+    /// Effective plastic strain ε̄p.
+    Strain(Vec<f64>),
+    /// [ε̄p, temperature T].
+    StrainTemperature(Vec<[f64; 2]>),
+}
+
+impl PlasticState {
+    /// State for `n` particles of a material.
+    pub fn for_material(model: &crate::model::MaterialModel, n: usize) -> Self {
+        match model {
+            crate::model::MaterialModel::ElasticPlastic(m) => match m.thermal {
+                Some(t) => PlasticState::StrainTemperature(vec![[0.0, t.room_temperature]; n]),
+                None => PlasticState::Strain(vec![0.0; n]),
+            },
+            crate::model::MaterialModel::LinearElastic(_) => PlasticState::None,
+        }
+    }
+
+    /// Effective plastic strain of local particle `k`, if the body has one.
+    pub fn plastic_strain(&self, k: usize) -> Option<f64> {
+        match self {
+            PlasticState::None => None,
+            PlasticState::Strain(v) => Some(v[k]),
+            PlasticState::StrainTemperature(v) => Some(v[k][0]),
+        }
+    }
+
+    /// Temperature of local particle `k`, if the body tracks one.
+    pub fn temperature(&self, k: usize) -> Option<f64> {
+        match self {
+            PlasticState::StrainTemperature(v) => Some(v[k][1]),
+            _ => None,
+        }
+    }
+}
+
+/// Per-particle state a return map reads and updates.
+trait PointState: Send + Sync {
+    fn plastic_strain(&self) -> f64;
+    fn temperature(&self) -> Option<f64>;
+    fn add_plastic_strain(&mut self, increment: f64);
+    /// Adds plastic work per unit mass w (J/kg) as heat, if the state has a temperature.
+    fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>);
+}
+
+impl PointState for f64 {
+    #[inline]
+    fn plastic_strain(&self) -> f64 {
+        *self
+    }
+    #[inline]
+    fn temperature(&self) -> Option<f64> {
+        None
+    }
+    #[inline]
+    fn add_plastic_strain(&mut self, increment: f64) {
+        *self += increment;
+    }
+    #[inline]
+    fn heat(&mut self, _: f64, _: Option<&Thermal>) {}
+}
+
+impl PointState for [f64; 2] {
+    #[inline]
+    fn plastic_strain(&self) -> f64 {
+        self[0]
+    }
+    #[inline]
+    fn temperature(&self) -> Option<f64> {
+        Some(self[1])
+    }
+    #[inline]
+    fn add_plastic_strain(&mut self, increment: f64) {
+        self[0] += increment;
+    }
+    #[inline]
+    fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>) {
+        if let Some(t) = thermal {
+            // Adiabatic: all plastic work becomes heat (numerics.md §8.5).
+            self[1] += work_per_mass / t.specific_heat;
+        }
+    }
+}
+
+/// A deviatoric return map with everything but the point state fixed for the body.
+trait Strength: Sync {
+    fn return_map(
+        &self,
+        trial: &Tensor3,
+        shear: f64,
+        ep: f64,
+        rate: f64,
+        temperature: f64,
+    ) -> PlasticReturn;
+}
+
+impl Strength for VonMisesPlasticity {
+    #[inline]
+    fn return_map(&self, trial: &Tensor3, shear: f64, ep: f64, _: f64, _: f64) -> PlasticReturn {
+        VonMisesPlasticity::return_map(self, trial, shear, ep)
+    }
+}
+
+struct JohnsonCook {
+    model: JohnsonCookStrength,
+    iterate: bool,
+}
+
+impl Strength for JohnsonCook {
+    #[inline]
+    fn return_map(
+        &self,
+        trial: &Tensor3,
+        shear: f64,
+        ep: f64,
+        rate: f64,
+        temperature: f64,
+    ) -> PlasticReturn {
+        self.model
+            .return_map(trial, shear, ep, rate, temperature, self.iterate)
+    }
+}
+
+/// Pressure at the end of the step.
+trait Pressure: Sync {
+    /// `p_old` at the start, `trace_d` = tr D at n−½, `j` = det F^n, `energy_v` = ρ0 e.
+    fn pressure(&self, p_old: f64, trace_d: f64, dt: f64, j: f64, energy_v: f64) -> f64;
+}
+
+/// ṗ = −K tr D.
+struct Hypoelastic {
+    bulk: f64,
+}
+
+impl Pressure for Hypoelastic {
+    #[inline]
+    fn pressure(&self, p_old: f64, trace_d: f64, dt: f64, _: f64, _: f64) -> f64 {
+        p_old - self.bulk * trace_d * dt
+    }
+}
+
+macro_rules! eos_pressure {
+    ($t:ty) => {
+        impl Pressure for $t {
+            #[inline]
+            fn pressure(&self, _: f64, _: f64, _: f64, j: f64, energy_v: f64) -> f64 {
+                // μ = ρ/ρ0 − 1 = 1/J − 1 (R 6.23).
+                <$t>::pressure(self, 1.0 / j - 1.0, energy_v)
+            }
+        }
+    };
+}
+eos_pressure!(LinearEos);
+eos_pressure!(PolynomialEos);
+eos_pressure!(MieGruneisen);
+
+/// Updates σ, P, J, e and the plastic state of one body made of `material`.
+pub(crate) fn update_elastic_plastic<const D: usize>(
+    material: &ElasticPlastic,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+    state: &mut PlasticState,
+) {
+    match &material.pressure {
+        PressureModel::Hypoelastic => {
+            let law = Hypoelastic {
+                bulk: material.elastic.bulk_modulus(),
+            };
+            with_strength(material, &law, step, p, state)
+        }
+        PressureModel::Eos(EquationOfState::Linear(e)) => {
+            with_strength(material, e, step, p, state)
+        }
+        PressureModel::Eos(EquationOfState::Polynomial(e)) => {
+            with_strength(material, e, step, p, state)
+        }
+        PressureModel::Eos(EquationOfState::MieGruneisen(e)) => {
+            with_strength(material, e, step, p, state)
+        }
+    }
+}
+
+fn with_strength<const D: usize, P: Pressure>(
+    material: &ElasticPlastic,
+    pressure: &P,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+    state: &mut PlasticState,
+) {
+    match material.strength {
+        StrengthModel::VonMises(vm) => with_state(material, pressure, &vm, step, p, state),
+        StrengthModel::JohnsonCook { model, iterate } => with_state(
+            material,
+            pressure,
+            &JohnsonCook { model, iterate },
+            step,
+            p,
+            state,
+        ),
+    }
+}
+
+fn with_state<const D: usize, P: Pressure, S: Strength>(
+    material: &ElasticPlastic,
+    pressure: &P,
+    strength: &S,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+    state: &mut PlasticState,
+) {
+    match state {
+        PlasticState::Strain(v) => update::<D, P, S, f64>(material, pressure, strength, step, p, v),
+        PlasticState::StrainTemperature(v) => {
+            update::<D, P, S, [f64; 2]>(material, pressure, strength, step, p, v)
+        }
+        PlasticState::None => unreachable!("elastic-plastic bodies always carry a plastic state"),
+    }
+}
+
+/// The per-particle loop (R 5.82–5.86 with a return map):
+/// s* = Q s Qᵀ + 2G Δt D′ (Hughes–Winget Q), p from the pressure law (then the cutoff),
+/// s = return_map(s*), σ = −p I + s, e += Δt σ^{n−½}:D/ρ^{n−½}, ε̄p += Δε̄p, T += σ̄Δε̄p/(ρ c_v).
+fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
+    material: &ElasticPlastic,
+    pressure_law: &P,
+    strength: &S,
+    step: &ConstitutiveStep,
+    p: &mut Particles<D>,
+    points: &mut [T],
+) {
+    let dt = step.dt;
+    let rho0 = step.density0;
+    let shear = material.elastic.shear_modulus();
+    let min_pressure = material.min_pressure.unwrap_or(f64::NEG_INFINITY);
+    let thermal = material.thermal.as_ref();
+    let room_temperature = thermal.map_or(0.0, |t| t.room_temperature);
+    let r = step.range.clone();
+    let f_all = &p.deformation_gradient[r.clone()];
+    let f_dot_all = &p.deformation_rate[r.clone()];
+    p.stress[r.clone()]
+        .par_iter_mut()
+        .zip(p.pk1[r.clone()].par_iter_mut())
+        .zip(p.jacobian[r.clone()].par_iter_mut())
+        .zip(p.internal_energy[r].par_iter_mut())
+        .zip(points.par_iter_mut())
+        .enumerate()
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(k, ((((sigma, pk1), jac), energy), point))| {
+            let f = embed_with_identity(&f_all[k]);
+            let f_dot = embed_with_zeros(&f_dot_all[k]);
+            let f_half = f - f_dot * (0.5 * dt);
+            let (l, j_half) = match inverse_and_determinant(&f_half) {
+                (Some(inv), det) => (f_dot * inv, det),
+                (None, _) => (Tensor3::zeros(), f64::NAN),
+            };
+            let d = sym(&l);
+            let w = (l - l.transpose()) * 0.5;
+            let (cofactor, j) = cofactor_and_determinant(&f);
+            // Elastic predictor of the deviator with an exactly orthogonal rotation.
+            let s_old = deviator(sigma);
+            let p_old = -sigma.trace() / 3.0;
+            let half = w * (0.5 * dt);
+            let q = match (Tensor3::identity() - half).try_inverse() {
+                Some(inv) => inv * (Tensor3::identity() + half),
+                None => Tensor3::identity(),
+            };
+            let trial = q * s_old * q.transpose() + deviator(&d) * (2.0 * shear * dt);
+            let energy_v = rho0 * *energy;
+            let pressure = pressure_law
+                .pressure(p_old, d.trace(), dt, j, energy_v)
+                .max(min_pressure);
+            let temperature = point.temperature().unwrap_or(room_temperature);
+            let rate = equivalent_strain_rate(&d);
+            let ret = strength.return_map(&trial, shear, point.plastic_strain(), rate, temperature);
+            let sigma_new = ret.deviator - Tensor3::identity() * pressure;
+            *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
+            // Plastic work per unit mass at the end-of-step flow stress: σ̄ Δε̄p / ρ.
+            let flow = (1.5 * ret.deviator.component_mul(&ret.deviator).sum()).sqrt();
+            point.heat(flow * ret.plastic_strain_increment * j / rho0, thermal);
+            point.add_plastic_strain(ret.plastic_strain_increment);
+            *sigma = sigma_new;
+            *jac = j;
+            *pk1 = if j != 0.0 && j.is_finite() {
+                project(&(sigma_new * cofactor))
+            } else {
+                Tensor::<D>::from_element(f64::NAN)
+            };
+        });
+}
