@@ -62,32 +62,45 @@ impl<const D: usize> Bonds<D> {
     }
 }
 
-/// Per-body input to [`build_bonds`].
-pub(crate) struct BodyBonds<'a, const D: usize> {
-    /// Global index of the body's first particle.
-    pub first: usize,
-    /// Reference positions of the body's particles.
-    pub positions0: &'a [Vector<D>],
+/// Per-body input to [`build_bonds`]: the body's real particles first, then its symmetry
+/// ghosts (numerics.md §13.1), in body-local indices.
+pub(crate) struct BodyBonds<const D: usize> {
+    /// Global index of each local point (reals, then ghosts).
+    pub global: Vec<usize>,
+    /// Number of real particles (local indices below this).
+    pub n_real: usize,
+    /// Reference positions of the local points.
+    pub positions0: Vec<Vector<D>>,
     /// Reference volumes.
-    pub volumes0: &'a [f64],
-    /// Reference neighbour list (body-local indices).
+    pub volumes0: Vec<f64>,
+    /// For each ghost (local index n_real + g): (parent local index, reflection mask).
+    pub ghosts: Vec<(usize, u32)>,
+    /// Local index of the ghost of (local real particle, mask).
+    pub ghost_of: std::collections::HashMap<(usize, u32), usize>,
+    /// Component signs of each reflection mask (index = mask).
+    pub signs: Vec<Vector<D>>,
+    /// Reference neighbour list over all local points.
     pub neighbours: NeighbourList,
     /// The body's kernel.
     pub kernel: AnyKernel,
 }
 
 /// Builds bonds for all bodies (in order) and their gradients.
+///
+/// Real particles get bonds (to reals and ghosts); ghosts get none. `n_total` is the global
+/// particle count including ghosts, whose (empty) bond ranges follow the reals.
 pub(crate) fn build_bonds<const D: usize>(
-    bodies: &[BodyBonds<'_, D>],
+    bodies: &[BodyBonds<D>],
     corrected: bool,
+    n_total: usize,
 ) -> (Bonds<D>, CorrectionReport) {
     let mut bonds = Bonds::<D>::default();
     let mut report = CorrectionReport::default();
     bonds.offsets.push(0);
     for body in bodies {
         let list = &body.neighbours;
-        let n = body.positions0.len();
-        // Per-particle gradients G̃_IJ (unweighted) in neighbour order.
+        let n = body.n_real;
+        // Per-particle gradients G̃_IJ (unweighted) in neighbour order, for real particles.
         let per_particle: Vec<(Vec<Vector<D>>, bool)> = (0..n)
             .into_par_iter()
             .map(|i| particle_gradients(i, body, corrected))
@@ -95,10 +108,10 @@ pub(crate) fn build_bonds<const D: usize>(
         let base = bonds.neighbours.len();
         for (i, (grads, regularised)) in per_particle.iter().enumerate() {
             if *regularised {
-                report.regularised_particles.push(body.first + i);
+                report.regularised_particles.push(body.global[i]);
             }
             for (&j, g) in list.neighbours_of(i).iter().zip(grads) {
-                bonds.neighbours.push((body.first + j as usize) as u32);
+                bonds.neighbours.push(body.global[j as usize] as u32);
                 bonds.gradient.push(g * body.volumes0[j as usize]);
             }
             bonds.offsets.push(bonds.neighbours.len());
@@ -107,11 +120,23 @@ pub(crate) fn build_bonds<const D: usize>(
         for i in 0..n {
             for (k, &j) in list.neighbours_of(i).iter().enumerate() {
                 let j = j as usize;
+                // A ghost J = reflection M of real particle p sees I as p sees the ghost of I
+                // under the same M, mirrored: G̃_JI = M G̃_{p, M(I)} (planes commute, M² = I).
+                let (source, target, mask) = if j < n {
+                    (j, i, 0)
+                } else {
+                    let (parent, mask) = body.ghosts[j - n];
+                    let mirror = *body
+                        .ghost_of
+                        .get(&(i, mask))
+                        .expect("the mirror of a particle near a ghost is a ghost too");
+                    (parent, mirror, mask)
+                };
                 let back = list
-                    .neighbours_of(j)
-                    .binary_search(&(i as u32))
+                    .neighbours_of(source)
+                    .binary_search(&(target as u32))
                     .expect("reference neighbour lists are symmetric");
-                let g_ji = per_particle[j].0[back];
+                let g_ji = per_particle[source].0[back].component_mul(&body.signs[mask as usize]);
                 bonds.reverse_gradient.push(g_ji * body.volumes0[j]);
                 debug_assert_eq!(
                     bonds.reverse_gradient.len(),
@@ -119,6 +144,10 @@ pub(crate) fn build_bonds<const D: usize>(
                 );
             }
         }
+    }
+    // Ghosts (and nothing else) follow the reals: empty bond ranges.
+    while bonds.offsets.len() < n_total + 1 {
+        bonds.offsets.push(bonds.neighbours.len());
     }
     bonds.gradient_sum = (0..bonds.offsets.len() - 1)
         .into_par_iter()
@@ -135,11 +164,11 @@ pub(crate) fn build_bonds<const D: usize>(
 /// regularised.
 fn particle_gradients<const D: usize>(
     i: usize,
-    body: &BodyBonds<'_, D>,
+    body: &BodyBonds<D>,
     corrected: bool,
 ) -> (Vec<Vector<D>>, bool) {
-    let x = body.positions0;
-    let v0 = body.volumes0;
+    let x = &body.positions0;
+    let v0 = &body.volumes0;
     let neighbours = body.neighbours.neighbours_of(i);
     let raw: Vec<Vector<D>> = neighbours
         .iter()

@@ -28,7 +28,7 @@ pub use fields::ParticleField;
 pub use model::{
     BodyDescription, BoundaryDescription, EffectsDescription, ElasticPlastic, Formulation,
     MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
-    StressUpdate, Thermal, WallDescription,
+    StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };
 pub use simulation::{BodyInfo, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

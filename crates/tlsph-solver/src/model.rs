@@ -209,6 +209,16 @@ pub struct WallDescription<const D: usize> {
     pub normal: Vector<D>,
 }
 
+/// A symmetry plane x_axis = position, modelled by mirror (ghost) particles
+/// (numerics.md §13.1). Bodies must lie on one side of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SymmetryPlane {
+    /// Normal axis: 0 = x, 1 = y, 2 = z.
+    pub axis: usize,
+    /// Position of the plane along that axis \[m\].
+    pub position: f64,
+}
+
 /// Optional effects of a run; absent effects cost nothing.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct EffectsDescription<const D: usize> {
@@ -216,6 +226,8 @@ pub struct EffectsDescription<const D: usize> {
     pub walls: Vec<WallDescription<D>>,
     /// Ganzenmüller hourglass control coefficient α (numerics.md §10.5).
     pub hourglass_control: Option<f64>,
+    /// Symmetry planes (several at once for quarter and eighth models).
+    pub symmetry_planes: Vec<SymmetryPlane>,
 }
 
 /// Everything needed to start a simulation.

@@ -72,6 +72,8 @@ pub struct Simulation<const D: usize> {
     particles: Particles<D>,
     bonds: Bonds<D>,
     prescribed: Vec<PrescribedSet<D>>,
+    /// Symmetry ghosts (empty without symmetry planes).
+    ghosts: Ghosts<D>,
     /// Plastic state per body (empty for elastic bodies).
     plastic: Vec<PlasticState>,
     /// Declared effects with their booked energies (empty when none is declared).
@@ -131,31 +133,40 @@ impl<const D: usize> Simulation<D> {
                 sound_speed0: (material.model.longitudinal_modulus() / material.density).sqrt(),
             });
         }
+        let n_real = particles.len();
+        let planes = &model.effects.symmetry_planes;
+        let mut ghosts = Ghosts::default();
         let mut body_bonds = Vec::with_capacity(bodies.len());
         for info in &bodies {
             let kernel = config
                 .kernel
                 .build(D, info.smoothing_length)
                 .map_err(|e| SetupError::Kernel(e.to_string()))?;
-            let positions0 = &particles.positions0[info.range.clone()];
-            let neighbours =
-                build_neighbour_list(positions0, kernel.support_radius()).map_err(|e| {
-                    SetupError::Neighbours {
-                        body: info.name.clone(),
-                        message: e.to_string(),
-                    }
+            let mut local = mirror_body(info, &particles, planes, kernel)?;
+            // Append this body's ghosts as particles (never integrated; refreshed each step).
+            for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
+                let global_parent = info.range.start + parent;
+                let signs = local.signs[mask as usize];
+                let position0 = local.positions0[local.n_real + k];
+                let velocity = particles.velocities[global_parent].component_mul(&signs);
+                let volume0 = particles.volumes0[global_parent];
+                particles.push(position0, volume0, info.density0, velocity);
+                local.global.push(particles.len() - 1);
+                ghosts.parent.push(global_parent);
+                ghosts.signs.push(signs);
+            }
+            local.neighbours = build_neighbour_list(&local.positions0, kernel.support_radius())
+                .map_err(|e| SetupError::Neighbours {
+                    body: info.name.clone(),
+                    message: e.to_string(),
                 })?;
-            body_bonds.push(BodyBonds {
-                first: info.range.start,
-                positions0,
-                volumes0: &particles.volumes0[info.range.clone()],
-                neighbours,
-                kernel,
-            });
+            body_bonds.push(local);
         }
+        ghosts.first = n_real;
         let corrected = config.formulation == Formulation::TotalLagrangianCorrected;
-        let (bonds, correction) = build_bonds(&body_bonds, corrected);
+        let (bonds, correction) = build_bonds(&body_bonds, corrected, particles.len());
         drop(body_bonds);
+
         let prescribed = model
             .boundaries
             .iter()
@@ -208,16 +219,13 @@ impl<const D: usize> Simulation<D> {
             .iter()
             .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
             .collect();
-        let effects = build_effects(&model, &bodies, &particles, &bonds)?;
-        let n_effect = if effects.is_empty() {
-            0
-        } else {
-            particles.len()
-        };
+        let effects = build_effects(&model, &bodies, &particles, &bonds, n_real)?;
+        let n_effect = if effects.is_empty() { 0 } else { n_real };
         let mut sim = Self {
             effect_scratch: vec![Vector::zeros(); n_effect],
             chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
             effects,
+            ghosts,
             config,
             materials: model.materials.iter().map(|m| m.model).collect(),
             bodies,
@@ -250,6 +258,7 @@ impl<const D: usize> Simulation<D> {
             self.time += dt;
         }
         let step = self.steps_done;
+        self.ghosts.refresh_kinematics(&mut self.particles);
         gather_kinematics(&self.bonds, &mut self.particles);
         for (b, info) in self.bodies.iter().enumerate() {
             let constitutive = ConstitutiveStep {
@@ -271,6 +280,7 @@ impl<const D: usize> Simulation<D> {
                 }
             }
         }
+        self.ghosts.refresh_stress(&mut self.particles);
         if let Some(i) = first_index_where(&self.particles.jacobian, |j| j.is_nan() || *j <= 0.0) {
             let jacobian = self.particles.jacobian[i];
             if !jacobian.is_finite() {
@@ -495,7 +505,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Material velocity gradients Ḟ^{n−½} of the last step.
     pub fn deformation_rates(&self) -> &[tlsph_math::Tensor<D>] {
-        &self.particles.deformation_rate
+        &self.particles.deformation_rate[..self.n_particles()]
     }
 
     /// Current simulated time \[s\].
@@ -510,7 +520,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Total number of particles.
     pub fn n_particles(&self) -> usize {
-        self.particles.len()
+        self.ghosts.first_or(self.particles.len())
     }
 
     /// Configuration of the run.
@@ -535,32 +545,32 @@ impl<const D: usize> Simulation<D> {
 
     /// Reference positions X.
     pub fn positions0(&self) -> &[Vector<D>] {
-        &self.particles.positions0
+        &self.particles.positions0[..self.n_particles()]
     }
 
     /// Displacements u^n.
     pub fn displacements(&self) -> &[Vector<D>] {
-        &self.particles.displacements
+        &self.particles.displacements[..self.n_particles()]
     }
 
     /// Masses.
     pub fn masses(&self) -> &[f64] {
-        &self.particles.masses
+        &self.particles.masses[..self.n_particles()]
     }
 
     /// Cauchy stresses σ^n.
     pub fn stresses(&self) -> &[tlsph_math::Tensor3] {
-        &self.particles.stress
+        &self.particles.stress[..self.n_particles()]
     }
 
     /// Deformation gradients F^n.
     pub fn deformation_gradients(&self) -> &[tlsph_math::Tensor<D>] {
-        &self.particles.deformation_gradient
+        &self.particles.deformation_gradient[..self.n_particles()]
     }
 
     /// Specific internal energies e^n \[J/kg\].
     pub fn internal_energies(&self) -> &[f64] {
-        &self.particles.internal_energy
+        &self.particles.internal_energy[..self.n_particles()]
     }
 
     /// Velocity of particle `i` at the current time t^n: v^n = v^{n+½} − ½Δt^{n+1} a^n,
@@ -630,7 +640,7 @@ impl<const D: usize> Simulation<D> {
             time: self.time,
             ..Diagnostics::default()
         };
-        for i in 0..p.len() {
+        for i in 0..self.n_particles() {
             let m = p.masses[i];
             let v = vector_to_3d(&self.velocity(i));
             let x: Vector3 = vector_to_3d(&(p.positions0[i] + p.displacements[i]));
@@ -650,6 +660,146 @@ impl<const D: usize> Simulation<D> {
     }
 }
 
+/// Symmetry ghosts: particle `first + g` mirrors real particle `parent[g]` with component
+/// signs `signs[g]` (numerics.md §13.1: u_g = M u_p, v_g = M v_p, P_g = M P_p M).
+#[derive(Debug, Clone, Default)]
+struct Ghosts<const D: usize> {
+    first: usize,
+    parent: Vec<usize>,
+    signs: Vec<Vector<D>>,
+}
+
+impl<const D: usize> Ghosts<D> {
+    /// Index of the first ghost, or `n` when there are none.
+    fn first_or(&self, n: usize) -> usize {
+        if self.parent.is_empty() {
+            n
+        } else {
+            self.first
+        }
+    }
+
+    /// Mirrors displacements and velocities from the parents (gather per ghost).
+    fn refresh_kinematics(&self, p: &mut Particles<D>) {
+        if self.parent.is_empty() {
+            return;
+        }
+        let (real_u, ghost_u) = p.displacements.split_at_mut(self.first);
+        let (real_v, ghost_v) = p.velocities.split_at_mut(self.first);
+        ghost_u
+            .par_iter_mut()
+            .zip(ghost_v.par_iter_mut())
+            .enumerate()
+            .for_each(|(g, (u, v))| {
+                let (parent, signs) = (self.parent[g], self.signs[g]);
+                *u = real_u[parent].component_mul(&signs);
+                *v = real_v[parent].component_mul(&signs);
+            });
+    }
+
+    /// Mirrors first Piola–Kirchhoff and Cauchy stress from the parents.
+    fn refresh_stress(&self, p: &mut Particles<D>) {
+        if self.parent.is_empty() {
+            return;
+        }
+        let (real_p, ghost_p) = p.pk1.split_at_mut(self.first);
+        let (real_s, ghost_s) = p.stress.split_at_mut(self.first);
+        ghost_p
+            .par_iter_mut()
+            .zip(ghost_s.par_iter_mut())
+            .enumerate()
+            .for_each(|(g, (pk1, sigma))| {
+                let (parent, signs) = (self.parent[g], self.signs[g]);
+                // (M A M)_kl = s_k s_l A_kl for a diagonal reflection M = diag(s).
+                *pk1 = real_p[parent].map_with_location(|k, l, x| x * signs[k] * signs[l]);
+                let sign = |k: usize| if k < D { signs[k] } else { 1.0 };
+                *sigma = real_s[parent].map_with_location(|k, l, x| x * sign(k) * sign(l));
+            });
+    }
+}
+
+/// The body's reals and their mirror images across every non-empty combination of symmetry
+/// planes within the kernel support (corner ghosts when several planes meet).
+fn mirror_body<const D: usize>(
+    info: &BodyInfo,
+    particles: &Particles<D>,
+    planes: &[crate::model::SymmetryPlane],
+    kernel: tlsph_kernels::AnyKernel,
+) -> Result<BodyBonds<D>, SetupError> {
+    let support = kernel.support_radius();
+    let reals = &particles.positions0[info.range.clone()];
+    let n_real = reals.len();
+    for plane in planes {
+        if plane.axis >= D || !plane.position.is_finite() {
+            return Err(SetupError::InvalidConfig {
+                field: "symmetry_plane",
+                message: format!(
+                    "a plane normal to axis {} at {} does not exist in {D}D",
+                    plane.axis, plane.position
+                ),
+            });
+        }
+        let above = reals.iter().all(|x| x[plane.axis] > plane.position);
+        let below = reals.iter().all(|x| x[plane.axis] < plane.position);
+        if !(above || below) {
+            return Err(SetupError::InvalidBody {
+                body: info.name.clone(),
+                message: format!(
+                    "has particles on both sides of, or on, the symmetry plane x[{}] = {}",
+                    plane.axis, plane.position
+                ),
+            });
+        }
+    }
+    let n_masks = 1usize << planes.len();
+    let signs: Vec<Vector<D>> = (0..n_masks)
+        .map(|mask| {
+            let mut s = Vector::<D>::repeat(1.0);
+            for (k, plane) in planes.iter().enumerate() {
+                if mask & (1 << k) != 0 {
+                    s[plane.axis] = -s[plane.axis];
+                }
+            }
+            s
+        })
+        .collect();
+    let mut positions0 = reals.to_vec();
+    let mut volumes0 = particles.volumes0[info.range.clone()].to_vec();
+    let mut ghosts = Vec::new();
+    let mut ghost_of = std::collections::HashMap::new();
+    for mask in 1..n_masks {
+        for (i, x) in reals.iter().enumerate() {
+            let near = planes.iter().enumerate().all(|(k, plane)| {
+                mask & (1 << k) == 0 || (x[plane.axis] - plane.position).abs() < support
+            });
+            if !near {
+                continue;
+            }
+            let mut image = *x;
+            for (k, plane) in planes.iter().enumerate() {
+                if mask & (1 << k) != 0 {
+                    image[plane.axis] = 2.0 * plane.position - image[plane.axis];
+                }
+            }
+            ghost_of.insert((i, mask as u32), positions0.len());
+            ghosts.push((i, mask as u32));
+            positions0.push(image);
+            volumes0.push(volumes0[i]);
+        }
+    }
+    Ok(BodyBonds {
+        global: info.range.clone().collect(),
+        n_real,
+        positions0,
+        volumes0,
+        ghosts,
+        ghost_of,
+        signs,
+        neighbours: Default::default(),
+        kernel,
+    })
+}
+
 /// Chunk length of deterministic parallel reductions and searches.
 const CHUNK: usize = 4096;
 
@@ -659,9 +809,10 @@ fn build_effects<const D: usize>(
     bodies: &[BodyInfo],
     particles: &Particles<D>,
     bonds: &Bonds<D>,
+    n_real: usize,
 ) -> Result<Vec<BookedEffect<D>>, SetupError> {
     let mut effects: Vec<BookedEffect<D>> = Vec::new();
-    let n = particles.len();
+    let n = n_real;
     let body_of = |i: usize| {
         bodies
             .iter()
@@ -726,7 +877,7 @@ fn build_effects<const D: usize>(
             &particles.positions0,
             &particles.volumes0,
             &particles.masses,
-            &bonds.offsets,
+            &bonds.offsets[..=n],
             &bonds.neighbours,
             |i| kernels[body_of(i)],
             |i| youngs[body_of(i)],

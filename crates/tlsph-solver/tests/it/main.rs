@@ -4,6 +4,7 @@
 mod allocation;
 mod effects;
 mod plasticity;
+mod symmetry;
 
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;
