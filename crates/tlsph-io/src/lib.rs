@@ -2,6 +2,7 @@
 //! files. Scene files are documented for users in `docs/scene-format.md`.
 
 mod geometry;
+pub mod particle_map;
 pub mod plot;
 mod run;
 mod scene;

@@ -8,6 +8,10 @@
 //! encoded with the `png` crate into a temporary file in the target directory, which is then
 //! renamed over the target, so a reader never sees a half-written file.
 //!
+//! Coloured particle maps (a scalar field over particle positions, with a colour bar) are in
+//! [`crate::particle_map`] and re-exported here; they share this module's text rendering, tick
+//! labels, [`PlotError`] and atomic writing.
+//!
 //! Setting `TLSPH_PLOT_SAMPLES=<dir>` while running this module's tests also copies two sample
 //! figures (`plot_sample.png`, `plot_loglog.png`) into `<dir>` for a visual check.
 
@@ -20,6 +24,8 @@ use ab_glyph::{point, Font, FontRef, PxScale, ScaleFont};
 use plotters::coord::ranged1d::{BoldPoints, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
+
+pub use crate::particle_map::{viridis, write_particle_map, MapPoint, ParticleMapSpec};
 
 /// Width of every written PNG, in pixels.
 pub const PLOT_WIDTH: u32 = 900;
@@ -46,19 +52,19 @@ const PALETTE: [RGBColor; 10] = [
 ];
 
 /// Colour of all text.
-const TEXT_COLOR: RGBColor = RGBColor(20, 20, 20);
+pub(crate) const TEXT_COLOR: RGBColor = RGBColor(20, 20, 20);
 /// Maximum number of labelled (bold) ticks per axis.
-const N_TICK_LABELS: usize = 10;
-const TITLE_FONT_PX: f64 = 22.0;
-const AXIS_DESC_FONT_PX: f64 = 17.0;
-const TICK_FONT_PX: f64 = 14.0;
-const LEGEND_FONT_PX: f64 = 15.0;
+pub(crate) const N_TICK_LABELS: usize = 10;
+pub(crate) const TITLE_FONT_PX: f64 = 22.0;
+pub(crate) const AXIS_DESC_FONT_PX: f64 = 17.0;
+pub(crate) const TICK_FONT_PX: f64 = 14.0;
+pub(crate) const LEGEND_FONT_PX: f64 = 15.0;
 const LINE_WIDTH: u32 = 2;
 const MARKER_RADIUS: i32 = 4;
 const DASH_PX: i32 = 10;
 const DASH_GAP_PX: i32 = 6;
 /// Horizontal extent of the line sample drawn in front of each legend label.
-const LEGEND_SAMPLE_PX: i32 = 26;
+pub(crate) const LEGEND_SAMPLE_PX: i32 = 26;
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,7 +147,8 @@ pub enum PlotError {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// No series has a drawable point (all empty, non-finite, or `<= 0` on a log axis).
+    /// No series has a drawable point (all empty, non-finite, or `<= 0` on a log axis), or a
+    /// particle map has no particle with a finite position.
     NoData {
         /// The plot that was asked for (nothing is written there).
         path: PathBuf,
@@ -158,8 +165,8 @@ impl fmt::Display for PlotError {
             }
             PlotError::NoData { path } => write!(
                 f,
-                "cannot plot {}: no drawable data point (every series is empty, non-finite, \
-                 or non-positive on a log axis)",
+                "cannot plot {}: no drawable data point (every series or particle set is \
+                 empty, non-finite, or non-positive on a log axis)",
                 path.display()
             ),
             PlotError::Backend(msg) => write!(f, "plot rendering failed: {msg}"),
@@ -200,7 +207,7 @@ pub fn write_png(path: &Path, spec: &PlotSpec) -> Result<(), PlotError> {
     let backend_err = |msg: String| PlotError::Backend(format!("{}: {msg}", path.display()));
     ensure_font().map_err(backend_err)?;
     let pixels = render(spec, &prepared).map_err(backend_err)?;
-    write_atomically(path, &pixels)
+    write_atomically(path, &pixels, PLOT_WIDTH, PLOT_HEIGHT)
 }
 
 /// The drawable part of one input series.
@@ -244,10 +251,10 @@ fn prepare(spec: &PlotSpec) -> Vec<Prepared<'_>> {
 
 /// A finished axis range, `lo < hi`, both finite (and positive for log axes).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Axis {
-    lo: f64,
-    hi: f64,
-    log: bool,
+pub(crate) struct Axis {
+    pub(crate) lo: f64,
+    pub(crate) hi: f64,
+    pub(crate) log: bool,
 }
 
 impl Axis {
@@ -362,7 +369,7 @@ fn log_range(min: f64, max: f64) -> (f64, f64) {
 }
 
 /// Removes trailing zeros after a decimal point (in the mantissa when in `e` notation).
-fn trim_number(s: &str) -> String {
+pub(crate) fn trim_number(s: &str) -> String {
     let (mant, exp) = match s.split_once('e') {
         Some((m, e)) => (m, Some(e)),
         None => (s, None),
@@ -381,7 +388,7 @@ fn trim_number(s: &str) -> String {
 
 /// Tick label text for `v` on `axis`: plain decimals, or `1.5e-4` style for very large/small
 /// magnitudes; digits follow the axis span so neighbouring labels differ.
-fn tick_label(axis: &Axis, v: f64) -> String {
+pub(crate) fn tick_label(axis: &Axis, v: f64) -> String {
     if axis.log {
         let sci = axis.lo < 1e-3 || axis.hi > 1e4;
         if sci {
@@ -483,7 +490,7 @@ fn legend_corner(
 
 /// Horizontal anchor of a text job (along the reading direction).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum HAlign {
+pub(crate) enum HAlign {
     Left,
     Center,
     Right,
@@ -491,22 +498,22 @@ enum HAlign {
 
 /// Vertical anchor of a text job (across the reading direction).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum VAlign {
+pub(crate) enum VAlign {
     Top,
     Center,
 }
 
 /// A piece of text to draw once plotters has finished with the pixel buffer.
 #[derive(Debug, Clone)]
-struct TextJob {
-    text: String,
-    px: f32,
-    x: f32,
-    y: f32,
-    h: HAlign,
-    v: VAlign,
+pub(crate) struct TextJob {
+    pub(crate) text: String,
+    pub(crate) px: f32,
+    pub(crate) x: f32,
+    pub(crate) y: f32,
+    pub(crate) h: HAlign,
+    pub(crate) v: VAlign,
     /// Rotated 90 degrees counter-clockwise (reads bottom to top).
-    vertical: bool,
+    pub(crate) vertical: bool,
 }
 
 /// Text measurement and anti-aliased rasterisation with the embedded font.
@@ -514,19 +521,19 @@ struct TextJob {
 /// Plotters' own `ab_glyph` text path drops each glyph's left side bearing, which gives uneven
 /// letter spacing; all visible text is therefore laid out here (with kerning and sub-pixel
 /// positions) and blended into the RGB buffer after plotters has drawn lines and the mesh.
-struct TextPainter {
+pub(crate) struct TextPainter {
     font: FontRef<'static>,
 }
 
 impl TextPainter {
-    fn new() -> Result<Self, String> {
+    pub(crate) fn new() -> Result<Self, String> {
         FontRef::try_from_slice(FONT_TTF)
             .map(|font| Self { font })
             .map_err(|e| format!("embedded font: {e}"))
     }
 
     /// Advance width of `text` at pixel height `px`, including kerning.
-    fn width(&self, text: &str, px: f32) -> f32 {
+    pub(crate) fn width(&self, text: &str, px: f32) -> f32 {
         let font = self.font.as_scaled(PxScale::from(px));
         let mut w = 0.0;
         let mut prev = None;
@@ -542,7 +549,14 @@ impl TextPainter {
     }
 
     /// Blends the text into a tightly packed RGB buffer of `width x height` pixels.
-    fn draw(&self, pixels: &mut [u8], width: u32, height: u32, job: &TextJob, color: RGBColor) {
+    pub(crate) fn draw(
+        &self,
+        pixels: &mut [u8],
+        width: u32,
+        height: u32,
+        job: &TextJob,
+        color: RGBColor,
+    ) {
         let scale = PxScale::from(job.px);
         let font = self.font.as_scaled(scale);
         let w = self.width(&job.text, job.px);
@@ -598,7 +612,15 @@ impl TextPainter {
 }
 
 /// Alpha-blends `color` with weight `alpha` into the pixel at (`x`, `y`) if it is inside.
-fn blend(pixels: &mut [u8], width: u32, height: u32, x: f32, y: f32, color: RGBColor, alpha: f32) {
+pub(crate) fn blend(
+    pixels: &mut [u8],
+    width: u32,
+    height: u32,
+    x: f32,
+    y: f32,
+    color: RGBColor,
+    alpha: f32,
+) {
     let (x, y) = (x.round(), y.round());
     if x < 0.0 || y < 0.0 || x >= width as f32 || y >= height as f32 {
         return;
@@ -967,8 +989,13 @@ where
     Ok(jobs)
 }
 
-/// Encodes `pixels` as an RGB PNG into a temporary file next to `path` and renames it to `path`.
-fn write_atomically(path: &Path, pixels: &[u8]) -> Result<(), PlotError> {
+/// Encodes `pixels` (`width x height`, tightly packed RGB) as a PNG into a temporary file next to `path` and renames it to `path`.
+pub(crate) fn write_atomically(
+    path: &Path,
+    pixels: &[u8],
+    width: u32,
+    height: u32,
+) -> Result<(), PlotError> {
     let io_err = |p: &Path| {
         let p = p.to_path_buf();
         move |source| PlotError::Io { path: p, source }
@@ -996,7 +1023,7 @@ fn write_atomically(path: &Path, pixels: &[u8]) -> Result<(), PlotError> {
 
     {
         let mut out = BufWriter::new(tmp.as_file_mut());
-        let mut encoder = png::Encoder::new(&mut out, PLOT_WIDTH, PLOT_HEIGHT);
+        let mut encoder = png::Encoder::new(&mut out, width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);

@@ -10,7 +10,7 @@ use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
     BodyDescription, BoundaryDescription, EffectsDescription, Formulation, MaterialDescription,
-    Model, ParticleField, SimulationConfig, StressUpdate, WallDescription,
+    Model, ParticleField, SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
 };
 use toml::Spanned;
 
@@ -346,6 +346,25 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             message: "the scene has no [[body]]".into(),
         });
     }
+    if stress_update == StressUpdate::GreenLagrange {
+        if let Some(b) = bodies
+            .iter()
+            .find(|b| materials[b.material].model.has_plastic_strain())
+        {
+            let span = sim
+                .stress_update
+                .as_ref()
+                .map_or(sim.formulation.span(), |s| s.span());
+            return Err(ctx.error(
+                &span,
+                "simulation.stress_update",
+                format!(
+                    "body `{}` is elastic-plastic, which needs \"jaumann-rate\" (the Green-Lagrange path is hyperelastic only)",
+                    b.name
+                ),
+            ));
+        }
+    }
     let find_body = |name: &Spanned<String>, field: &str| {
         bodies
             .iter()
@@ -423,6 +442,47 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             normal,
         });
     }
+    for plane in &file.symmetry_plane {
+        let axis = match plane.axis.get_ref().as_str() {
+            "x" => 0,
+            "y" => 1,
+            "z" => 2,
+            _ => D,
+        };
+        if axis >= D {
+            let axes = ["x", "y", "z"][..D].join(", ");
+            return Err(ctx.error(
+                &plane.axis.span(),
+                "symmetry_plane.axis",
+                format!(
+                    "`{}` is not an axis of a {D}D scene (axes: {axes})",
+                    plane.axis.get_ref()
+                ),
+            ));
+        }
+        let position = *plane.position.get_ref();
+        if !position.is_finite() {
+            return Err(ctx.error(
+                &plane.position.span(),
+                "symmetry_plane.position",
+                "must be finite".into(),
+            ));
+        }
+        for b in &bodies {
+            let above = b.positions.iter().all(|x| x[axis] > position);
+            let below = b.positions.iter().all(|x| x[axis] < position);
+            if !(above || below) {
+                return Err(ctx.error(
+                    &plane.position.span(),
+                    "symmetry_plane.position",
+                    format!("body `{}` has particles on both sides of, or on, this plane; model only one side", b.name),
+                ));
+            }
+        }
+        effects
+            .symmetry_planes
+            .push(SymmetryPlane { axis, position });
+    }
     if let Some(h) = &file.hourglass_control {
         effects.hourglass_control =
             Some(ctx.positive(&h.coefficient, "hourglass_control.coefficient")?);
@@ -488,6 +548,7 @@ fn build_body<const D: usize>(
         velocity: b.velocity.clone(),
         velocity_gradient: b.velocity_gradient.clone(),
         velocity_origin: b.velocity_origin.clone(),
+        clip: b.clip.clone(),
     };
     let has_inline_shape = inline.box_.is_some()
         || inline.cylinder.is_some()
@@ -499,11 +560,12 @@ fn build_body<const D: usize>(
             if inline.velocity.is_some()
                 || inline.velocity_gradient.is_some()
                 || inline.velocity_origin.is_some()
+                || inline.clip.is_some()
             {
                 return Err(ctx.error(
                     &b.name.span(),
                     &field("velocity"),
-                    "with [[body.shape]] tables, give velocity, velocity_gradient and velocity_origin inside each shape".into(),
+                    "with [[body.shape]] tables, give velocity, velocity_gradient, velocity_origin and clip inside each shape".into(),
                 ));
             }
             b.shape.iter().collect()
@@ -559,7 +621,13 @@ fn build_body<const D: usize>(
             Some(o) => ctx.vector::<D>(o, &sfield("velocity_origin"))?,
             None => Vector::<D>::zeros(),
         };
-        let points = fill_shape(&shape, spacing, &positions);
+        let mut points = fill_shape(&shape, spacing, &positions);
+        if let Some(clip) = &s.clip {
+            let span = clip.span();
+            let min = ctx.components::<D>(&clip.get_ref().min, &span, &sfield("clip.min"))?;
+            let max = ctx.components::<D>(&clip.get_ref().max, &span, &sfield("clip.max"))?;
+            points.retain(|x| (0..D).all(|k| x[k] >= min[k] && x[k] <= max[k]));
+        }
         if points.is_empty() {
             return Err(ctx.error(&span, &sfield("shape"), format!("contains no particle at spacing {spacing} (is it smaller than the spacing, or fully inside an earlier shape?)")));
         }

@@ -24,6 +24,16 @@ pub(crate) struct SceneFile {
     pub wall: Vec<WallTable>,
     #[serde(default)]
     pub hourglass_control: Option<HourglassTable>,
+    #[serde(default)]
+    pub symmetry_plane: Vec<SymmetryPlaneTable>,
+}
+
+/// `[[symmetry_plane]]`: a coordinate plane modelled with mirror (ghost) particles.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SymmetryPlaneTable {
+    pub axis: Spanned<String>,
+    pub position: Spanned<f64>,
 }
 
 /// `[[wall]]`: a rigid frictionless plane.
@@ -113,6 +123,8 @@ pub(crate) struct BodyTable {
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub velocity_gradient: Option<Spanned<Vec<Vec<f64>>>>,
     pub velocity_origin: Option<Spanned<Vec<f64>>>,
+    /// Keep only the lattice points inside this box (e.g. a quarter of a cylinder).
+    pub clip: Option<Spanned<BoxShape>>,
     /// ... or several in `[[body.shape]]` tables.
     #[serde(default)]
     pub shape: Vec<ShapeTable>,
@@ -130,6 +142,8 @@ pub(crate) struct ShapeTable {
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub velocity_gradient: Option<Spanned<Vec<Vec<f64>>>>,
     pub velocity_origin: Option<Spanned<Vec<f64>>>,
+    /// Keep only the lattice points inside this box (e.g. a quarter of a cylinder).
+    pub clip: Option<Spanned<BoxShape>>,
 }
 
 #[derive(Debug, Deserialize, Clone)]

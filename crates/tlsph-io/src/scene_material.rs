@@ -176,7 +176,18 @@ pub(crate) fn material_model(
         }
     };
     let thermal = match &m.specific_heat {
-        None => None,
+        None => {
+            // For von Mises materials room_temperature only sets the heating's start value.
+            if let (Some(t), "elastic-plastic") = (&m.room_temperature, model_name) {
+                return Err(ctx.error(
+                    &t.span(),
+                    &field("room_temperature"),
+                    "has no effect without specific_heat (adiabatic heating); give both or neither"
+                        .into(),
+                ));
+            }
+            None
+        }
         Some(cv) => {
             let specific_heat = ctx.positive(cv, &field("specific_heat"))?;
             let room_temperature = match &m.room_temperature {
@@ -206,11 +217,13 @@ pub(crate) fn material_model(
         }
     };
     let min_pressure = match optional(&m.min_pressure) {
-        Some(p) if !p.is_finite() => {
+        // A cutoff limits tension (negative pressure): a positive value would hold every
+        // particle in compression.
+        Some(p) if !(p.is_finite() && p <= 0.0) => {
             return Err(ctx.error(
                 &m.min_pressure.as_ref().map_or(m.model.span(), |x| x.span()),
                 &field("min_pressure"),
-                "must be finite".into(),
+                format!("must be a finite pressure ≤ 0 (tension is negative), got {p}"),
             ))
         }
         other => other,
@@ -271,7 +284,10 @@ fn eos(
                 ("coefficients", e.coefficients.is_some()),
                 ("sound_speed", e.sound_speed.is_some()),
                 ("s1", e.s1.is_some()),
+                ("s2", e.s2.is_some()),
+                ("s3", e.s3.is_some()),
                 ("gamma0", e.gamma0.is_some()),
+                ("a", e.a.is_some()),
             ])?;
             Ok(EquationOfState::Linear(
                 LinearEos::new(need(e.bulk_modulus, "bulk_modulus")?).map_err(locate)?,
@@ -282,7 +298,10 @@ fn eos(
                 ("bulk_modulus", e.bulk_modulus.is_some()),
                 ("sound_speed", e.sound_speed.is_some()),
                 ("s1", e.s1.is_some()),
+                ("s2", e.s2.is_some()),
+                ("s3", e.s3.is_some()),
                 ("gamma0", e.gamma0.is_some()),
+                ("a", e.a.is_some()),
             ])?;
             let c = e.coefficients.as_ref().ok_or_else(|| {
                 ctx.error(

@@ -202,8 +202,9 @@ impl<const D: usize> Simulation<D> {
             .collect::<Result<Vec<_>, _>>()?;
         if config.stress_update == StressUpdate::GreenLagrange {
             if let Some(m) = model
-                .materials
+                .bodies
                 .iter()
+                .map(|b| &model.materials[b.material])
                 .find(|m| m.model.has_plastic_strain())
             {
                 return Err(SetupError::InvalidConfig {
