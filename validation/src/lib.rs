@@ -7,6 +7,7 @@ pub mod analytic;
 pub mod cost;
 pub mod problems;
 pub mod report;
+pub mod stability;
 pub mod variants;
 
 pub use report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
@@ -39,6 +40,16 @@ pub fn problems() -> Vec<Problem> {
             id: problems::r_p4::ID,
             title: "clamped-free rod vibration from a linear velocity field",
             run: problems::r_p4::run,
+        },
+        Problem {
+            id: problems::r_p6::ID,
+            title: "Taylor impact of a copper rod on a rigid anvil",
+            run: problems::r_p6::run,
+        },
+        Problem {
+            id: "R-C3",
+            title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
+            run: stability::run,
         },
     ]
 }

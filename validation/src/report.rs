@@ -146,6 +146,8 @@ pub struct ProblemReport {
     pub curves: Vec<Curve>,
     /// Free-text notes (choices, explained mismatches) for the validation report.
     pub notes: Vec<String>,
+    /// Particle maps (file stem, figure) to render as PNG.
+    pub maps: Vec<(String, tlsph_io::particle_map::ParticleMapSpec)>,
 }
 
 /// Root of the `reference-data/` folder of this workspace.

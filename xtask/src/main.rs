@@ -102,6 +102,10 @@ fn validate(tier: Tier, only: Option<&str>) -> Result<bool, String> {
         for curve in &report.curves {
             write_curve(&out, curve)?;
         }
+        for (name, map) in &report.maps {
+            let path = out.join("plots").join(format!("{name}.png"));
+            tlsph_io::particle_map::write_particle_map(&path, map).map_err(|e| e.to_string())?;
+        }
         if !report.notes.is_empty() {
             let _ = writeln!(notes, "\n### {}\n", problem.id);
             for n in &report.notes {
@@ -393,6 +397,12 @@ fn regenerate_reference() -> Result<bool, String> {
             p4::energies_csv(
                 &p4::RodVibration::reveles_problem4(p4::K_THESIS_PER_S),
                 p4::TITANIUM.density,
+            ),
+        ),
+        (
+            root.join("R-C3/growth_rate_map.csv"),
+            tlsph_validation::stability::growth_rate_map_csv(
+                &tlsph_validation::stability::growth_rate_map(),
             ),
         ),
     ];

@@ -3,3 +3,4 @@
 pub mod r_p2;
 pub mod r_p3;
 pub mod r_p4;
+pub mod r_p6;

@@ -458,6 +458,7 @@ pub fn run() -> ProblemReport {
         rows,
         curves: vec![linear_field_curve(&sets, &x, &v)],
         notes,
+        ..ProblemReport::default()
     }
 }
 

@@ -1,0 +1,502 @@
+//! R-P6: Taylor impact of a copper rod on a rigid anvil (Reveles §6.2.2, Figs 6.19–6.22),
+//! elastic–plastic TLSPH with a rigid frictionless wall. 2D plane strain (as the thesis ran
+//! it) at three spacings, and 3D at the full tier. Final length and foot diameter against
+//! the problems.md band, energy closure, no inversion, and the sensitivity to the hardening
+//! modulus that the catalogue had to choose (M-CU6, E_t `[C]`).
+
+use crate::report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
+use std::time::Instant;
+use tlsph_io::particle_map::{MapPoint, ParticleMapSpec};
+use tlsph_io::{parse_scene, DimensionModel};
+use tlsph_solver::{Model, ParticleField, Simulation};
+
+/// Problem id.
+pub const ID: &str = "R-P6";
+/// Initial rod length L0 \[m\].
+pub const LENGTH: f64 = 0.04;
+/// Initial rod diameter D0 \[m\].
+pub const DIAMETER: f64 = 0.0074;
+/// Impact velocity \[m/s\].
+pub const VELOCITY: f64 = 100.0;
+/// Time at which the rod is taken to be at rest (KE < 1 % of the initial value well before) \[s\].
+pub const END_TIME: f64 = 150e-6;
+/// problems.md pass band for the final length \[m\]: brackets the analytic 2.8 cm and the
+/// thesis TLSPH 3.01 cm.
+pub const LENGTH_BAND: (f64, f64) = (0.0280, 0.0320);
+/// problems.md pass band for the final foot diameter \[m\]: ±10 % of the analytic 1.48 cm.
+pub const DIAMETER_BAND: (f64, f64) = (0.0133, 0.0163);
+/// Tangent modulus of M-CU6 \[Pa\] (`[C]` in problems.md: not stated in the thesis).
+pub const TANGENT_MODULUS: f64 = 1.1e9;
+
+fn material(tangent_modulus: f64) -> String {
+    format!(
+        r#"[[material]]
+name = "copper"                # M-CU6
+model = "elastic-plastic"
+density = 8990
+youngs_modulus = 110e9
+poisson_ratio = 0.343
+yield_stress = 90e6
+tangent_modulus = {tangent_modulus:e}
+"#
+    )
+}
+
+/// 2D plane-strain scene: the full-width rod standing on a wall at y = 0.
+pub fn scene_2d(spacing: f64, tangent_modulus: f64) -> String {
+    format!(
+        r#"# R-P6 Taylor bar, plane strain, rigid frictionless anvil
+[simulation]
+dimension = 2
+formulation = "total-lagrangian"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = {END_TIME:e}
+
+{material}
+[[body]]
+name = "rod"
+material = "copper"
+spacing = {spacing:e}
+box = {{ min = [{x0:e}, 0.0], max = [{x1:e}, {LENGTH:e}] }}
+velocity = [0.0, -{VELOCITY:e}]
+
+[[wall]]
+name = "anvil"
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+"#,
+        material = material(tangent_modulus),
+        x0 = -0.5 * DIAMETER,
+        x1 = 0.5 * DIAMETER,
+    )
+}
+
+/// 3D scene: the full cylinder on a wall at z = 0.
+pub fn scene_3d(spacing: f64) -> String {
+    format!(
+        r#"# R-P6 Taylor bar, 3D, rigid frictionless anvil
+[simulation]
+dimension = 3
+formulation = "total-lagrangian"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = {END_TIME:e}
+
+{material}
+[[body]]
+name = "rod"
+material = "copper"
+spacing = {spacing:e}
+cylinder = {{ base = [0.0, 0.0, 0.0], axis = "z", radius = {r:e}, length = {LENGTH:e} }}
+velocity = [0.0, 0.0, -{VELOCITY:e}]
+
+[[wall]]
+name = "anvil"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#,
+        material = material(TANGENT_MODULUS),
+        r = 0.5 * DIAMETER,
+    )
+}
+
+/// 3D quarter model: the quarter cylinder x, y > 0 with symmetry planes x = 0 and y = 0
+/// (ghost particles, numerics.md §13.1) on a wall at z = 0.
+pub fn scene_3d_quarter(spacing: f64) -> String {
+    scene_3d(spacing)
+        .replace(
+            "velocity = [0.0, 0.0, -",
+            "clip = { min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }\nvelocity = [0.0, 0.0, -",
+        )
+        .replace(
+            "[[wall]]",
+            "[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n\n[[symmetry_plane]]\naxis = \"y\"\nposition = 0.0\n\n[[wall]]",
+        )
+}
+
+/// Outcome of one Taylor run.
+#[derive(Debug, Clone)]
+pub struct TaylorRun {
+    /// Particle spacing \[m\].
+    pub spacing: f64,
+    /// Final length: axial extent of the particles + Δx (particle-volume edges) \[m\].
+    pub final_length: f64,
+    /// Final foot diameter: lateral extent + Δx \[m\].
+    pub final_diameter: f64,
+    /// Largest relative deviation of KE + IE + stored wall energy from its initial value.
+    pub energy_error: f64,
+    /// Time at which KE first fell below 1 % of its initial value \[s\] (NaN if never).
+    pub rest_time: f64,
+    /// Smallest det F seen.
+    pub min_jacobian: f64,
+    /// Largest effective plastic strain at the end.
+    pub max_plastic_strain: f64,
+    /// Tip (top-centre particle) axial position history (time, position) \[s, m\].
+    pub tip_history: Vec<(f64, f64)>,
+    /// Final outline: (axial position, half-width) of the outermost particle per axial layer.
+    pub outline: Vec<(f64, f64)>,
+    /// Final particles (x, axial, effective plastic strain) for a particle map.
+    pub final_particles: Vec<MapPoint>,
+    /// Cost.
+    pub cost: RunCost,
+    /// Run stopped early (message), if it did.
+    pub failure: Option<String>,
+}
+
+fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
+    let mut sim = Simulation::new(model).expect("R-P6 scene is valid");
+    let axis = D - 1;
+    // The tip: highest particle, nearest the axis among those.
+    let off_axis = |i: usize| {
+        sim.positions0()[i]
+            .iter()
+            .take(axis)
+            .map(|x| x.abs())
+            .sum::<f64>()
+    };
+    let tip = (0..sim.n_particles())
+        .max_by(|&a, &b| {
+            let (za, zb) = (sim.positions0()[a][axis], sim.positions0()[b][axis]);
+            za.total_cmp(&zb).then(off_axis(b).total_cmp(&off_axis(a)))
+        })
+        .expect("particles");
+    let mut run = TaylorRun {
+        spacing,
+        final_length: f64::NAN,
+        final_diameter: f64::NAN,
+        energy_error: 0.0,
+        rest_time: f64::NAN,
+        min_jacobian: f64::INFINITY,
+        max_plastic_strain: 0.0,
+        tip_history: Vec::new(),
+        outline: Vec::new(),
+        final_particles: Vec::new(),
+        cost: RunCost::default(),
+        failure: None,
+    };
+    let mut e0 = None;
+    let mut ke0 = None;
+    let start = Instant::now();
+    let mut next_sample = 0.0;
+    let result = sim.run(|s, _| {
+        let t = s.time();
+        // Diagnostics cost a pass over the particles: sample every 0.5 µs.
+        if t < next_sample && !s.finished() {
+            return;
+        }
+        next_sample = t + 0.5e-6;
+        let d = s.diagnostics();
+        let e = *e0.get_or_insert(d.total_energy());
+        let k0 = *ke0.get_or_insert(d.kinetic);
+        run.energy_error = run.energy_error.max((d.total_energy() - e).abs() / e);
+        if run.rest_time.is_nan() && d.kinetic < 0.01 * k0 {
+            run.rest_time = t;
+        }
+        run.tip_history
+            .push((t, s.positions0()[tip][axis] + s.displacements()[tip][axis]));
+        let min_j = (0..s.n_particles())
+            .map(|i| s.sample(ParticleField::Jacobian, i))
+            .fold(f64::INFINITY, f64::min);
+        run.min_jacobian = run.min_jacobian.min(min_j);
+    });
+    if let Err(e) = result {
+        run.failure = Some(e.to_string());
+    }
+    run.cost = RunCost {
+        particles: sim.n_particles(),
+        steps: sim.steps_done() as usize,
+        wall_s: start.elapsed().as_secs_f64(),
+    };
+    let x: Vec<_> = (0..sim.n_particles())
+        .map(|i| sim.positions0()[i] + sim.displacements()[i])
+        .collect();
+    let axial = |p: &tlsph_math::Vector<D>| p[axis];
+    let lateral =
+        |p: &tlsph_math::Vector<D>| p.iter().take(axis).map(|c| c * c).sum::<f64>().sqrt();
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(axial(p)), hi.max(axial(p)))
+        });
+    run.final_length = hi - lo + spacing;
+    // Plane strain: the extent across the bar; 3D: twice the largest radius.
+    run.final_diameter = if D == 2 {
+        let (l, h) = x
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                (l.min(p[0]), h.max(p[0]))
+            });
+        h - l + spacing
+    } else {
+        2.0 * x.iter().map(lateral).fold(0.0, f64::max) + spacing
+    };
+    run.final_particles = x
+        .iter()
+        .enumerate()
+        .map(|(i, p)| MapPoint::new(p[0], axial(p), sim.sample(ParticleField::PlasticStrain, i)))
+        .collect();
+    run.max_plastic_strain = (0..sim.n_particles())
+        .map(|i| sim.sample(ParticleField::PlasticStrain, i))
+        .fold(0.0, f64::max);
+    // Outline: outermost lateral position per axial layer of width Δx.
+    let layers = ((hi - lo) / spacing).ceil() as usize + 1;
+    let mut width = vec![0.0f64; layers];
+    for p in &x {
+        let k = (((axial(p) - lo) / spacing) as usize).min(layers - 1);
+        width[k] = width[k].max(if D == 2 { p[0].abs() } else { lateral(p) });
+    }
+    run.outline = width
+        .iter()
+        .enumerate()
+        .map(|(k, w)| (lo + (k as f64 + 0.5) * spacing, w + 0.5 * spacing))
+        .collect();
+    run
+}
+
+/// Runs the 2D plane-strain rod.
+pub fn simulate_2d(spacing: f64, tangent_modulus: f64) -> TaylorRun {
+    match parse_scene(&scene_2d(spacing, tangent_modulus), "R-P6 2D scene").map(|s| s.model) {
+        Ok(DimensionModel::Two(m)) => run_model(m, spacing),
+        Ok(_) => unreachable!("2D scene"),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// Runs the 3D rod (`quarter`: the quarter model with two symmetry planes).
+pub fn simulate_3d(spacing: f64, quarter: bool) -> TaylorRun {
+    let scene = if quarter {
+        scene_3d_quarter(spacing)
+    } else {
+        scene_3d(spacing)
+    };
+    match parse_scene(&scene, "R-P6 3D scene").map(|s| s.model) {
+        Ok(DimensionModel::Three(m)) => run_model(m, spacing),
+        Ok(_) => unreachable!("3D scene"),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn band_row(quantity: &str, measured: f64, band: (f64, f64), cost: RunCost) -> ReportRow {
+    let centre = 0.5 * (band.0 + band.1);
+    ReportRow::absolute(ID, quantity, measured, centre, 0.5 * (band.1 - band.0)).with_cost(cost)
+}
+
+/// Quick tier: one coarse 2D run (energy closure, no inversion, at rest by 150 µs). Full
+/// tier: 2D at three spacings against the band, 3D, and the hardening sensitivity.
+pub fn run(tier: Tier) -> ProblemReport {
+    let mut report = ProblemReport::default();
+    let spacings: &[f64] = match tier {
+        Tier::Quick => &[0.74e-3],
+        Tier::Full => &[0.74e-3, 0.37e-3, 0.185e-3],
+    };
+    let mut runs = Vec::new();
+    for &dx in spacings {
+        let run = simulate_2d(dx, TANGENT_MODULUS);
+        let tag = format!("2D dx={:.3} mm", dx * 1e3);
+        let c = run.cost;
+        let rows = &mut report.rows;
+        let failed = if run.failure.is_some() { 1.0 } else { 0.0 };
+        rows.push(
+            ReportRow::absolute(
+                ID,
+                &format!("{tag}: run completed (1 = stopped early)"),
+                failed,
+                0.0,
+                0.0,
+            )
+            .with_cost(c),
+        );
+        rows.push(
+            ReportRow::with_error(
+                ID,
+                &format!("{tag}: max |E - E0| / E0 incl. wall energy"),
+                run.energy_error,
+                0.0,
+                run.energy_error,
+                5e-3,
+            )
+            .with_cost(c),
+        );
+        rows.push(
+            ReportRow::with_error(
+                ID,
+                &format!("{tag}: at rest (KE < 1 %) before 150 us [s]"),
+                run.rest_time,
+                END_TIME,
+                if run.rest_time <= END_TIME { 0.0 } else { 1.0 },
+                0.0,
+            )
+            .with_cost(c),
+        );
+        rows.push(
+            ReportRow::with_error(
+                ID,
+                &format!("{tag}: min det F > 0"),
+                run.min_jacobian,
+                0.0,
+                if run.min_jacobian > 0.0 { 0.0 } else { 1.0 },
+                0.0,
+            )
+            .with_cost(c),
+        );
+        if tier == Tier::Full {
+            rows.push(band_row(
+                &format!("{tag}: final length [m] (band 2.80-3.20 cm)"),
+                run.final_length,
+                LENGTH_BAND,
+                c,
+            ));
+            rows.push(band_row(
+                &format!("{tag}: final foot width [m] (band 1.33-1.63 cm)"),
+                run.final_diameter,
+                DIAMETER_BAND,
+                c,
+            ));
+        }
+        report.notes.push(format!(
+            "2D plane strain, dx = {:.3} mm: final length {:.3} cm, foot width {:.3} cm, max plastic strain {:.2}, at rest at {:.0} µs, {} particles, {:.1} s.",
+            dx * 1e3, run.final_length * 100.0, run.final_diameter * 100.0, run.max_plastic_strain, run.rest_time * 1e6, c.particles, c.wall_s
+        ));
+        runs.push(run);
+    }
+    let finest = &runs[runs.len() - 1];
+    report.maps.push((
+        format!(
+            "r-p6-2d-plastic-strain-{}",
+            if tier == Tier::Full { "full" } else { "quick" }
+        ),
+        ParticleMapSpec {
+            title: format!(
+                "R-P6 plane strain at 150 µs, dx = {:.3} mm (cf. thesis Fig 6.19)",
+                finest.spacing * 1e3
+            ),
+            x_label: "x [m]".into(),
+            y_label: "height above the anvil [m]".into(),
+            value_label: "effective plastic strain".into(),
+            range: None,
+            // Deformed positions: enlarge markers a little so the stretched foot has no gaps.
+            marker_size: 1.3 * finest.spacing,
+            points: finest.final_particles.clone(),
+            outlines: vec![(
+                "thesis TLSPH final size: 3.01 cm × 1.47 cm".into(),
+                vec![
+                    (-0.00735, 0.0),
+                    (0.00735, 0.0),
+                    (0.0037, 0.0301),
+                    (-0.0037, 0.0301),
+                    (-0.00735, 0.0),
+                ],
+            )],
+        },
+    ));
+    if tier == Tier::Full {
+        let fine = &runs[runs.len() - 1];
+        let mid = &runs[runs.len() - 2];
+        let change = (fine.final_length - mid.final_length).abs() / fine.final_length;
+        report.rows.push(
+            ReportRow::with_error(
+                ID,
+                "2D final length change, last spacing halving (converged to 1 %)",
+                change,
+                0.0,
+                change,
+                0.01,
+            )
+            .with_cost(fine.cost),
+        );
+        for (quarter, dx) in [(false, 0.5e-3), (true, 0.37e-3)] {
+            let run3 = simulate_3d(dx, quarter);
+            let c = run3.cost;
+            let tag = format!(
+                "3D {} dx={:.3} mm",
+                if quarter { "quarter" } else { "full" },
+                dx * 1e3
+            );
+            report.rows.push(
+                ReportRow::with_error(
+                    ID,
+                    &format!("{tag}: max |E - E0| / E0 incl. wall energy"),
+                    run3.energy_error,
+                    0.0,
+                    run3.energy_error,
+                    5e-3,
+                )
+                .with_cost(c),
+            );
+            report.rows.push(band_row(
+                &format!("{tag}: final length [m] (band 2.80-3.20 cm)"),
+                run3.final_length,
+                LENGTH_BAND,
+                c,
+            ));
+            report.rows.push(band_row(
+                &format!("{tag}: final foot diameter [m] (band 1.33-1.63 cm)"),
+                run3.final_diameter,
+                DIAMETER_BAND,
+                c,
+            ));
+            report.notes.push(format!(
+                "{tag}: final length {:.3} cm, foot diameter {:.3} cm, {} particles, {:.1} s.",
+                run3.final_length * 100.0,
+                run3.final_diameter * 100.0,
+                c.particles,
+                c.wall_s
+            ));
+        }
+        // Sensitivity to the hardening modulus the catalogue had to choose.
+        let mut sensitivity = Vec::new();
+        for et in [0.2e9, 0.4e9, 0.7e9] {
+            let r = simulate_2d(0.37e-3, et);
+            sensitivity.push(format!(
+                "E_t = {:.1} GPa: {:.2} / {:.2} cm",
+                et * 1e-9,
+                r.final_length * 100.0,
+                r.final_diameter * 100.0
+            ));
+        }
+        report.notes.push(format!(
+            "Known deviation: with M-CU6 as catalogued (E_t = 1.1 GPa, a choice: the thesis does not state it) the rod hardens more than the thesis' (3.01 cm / 1.47 cm) and the analytic estimate (2.8 / 1.48 cm): it stays longer and narrower. Final length / width in 2D at dx = 0.37 mm for other tangent moduli: {}. No single E_t reproduces both thesis numbers in plane strain; the reference set-up needs the thesis' hardening data (open).",
+            sensitivity.join("; ")
+        ));
+        report.curves.push(Curve {
+            name: "r-p6-2d-outline".into(),
+            title: "R-P6 plane strain: final outline (half-width vs height)".into(),
+            x_label: "height above the anvil [m]".into(),
+            y_label: "half-width [m]".into(),
+            series: runs
+                .iter()
+                .map(|r| Series {
+                    label: format!("TLSPH dx = {:.3} mm", r.spacing * 1e3),
+                    points: r.outline.clone(),
+                    is_reference: false,
+                })
+                .chain([Series {
+                    label: "thesis TLSPH: length 3.01 cm, foot 1.47 cm".into(),
+                    points: vec![(0.0, 0.00735), (0.0301, 0.0037)],
+                    is_reference: true,
+                }])
+                .collect(),
+        });
+    }
+    report.curves.push(Curve {
+        name: format!(
+            "r-p6-2d-tip-{}",
+            if tier == Tier::Full { "full" } else { "quick" }
+        ),
+        title: "R-P6 plane strain: rod tip height".into(),
+        x_label: "time [s]".into(),
+        y_label: "tip height [m]".into(),
+        series: runs
+            .iter()
+            .map(|r| Series {
+                label: format!("TLSPH dx = {:.3} mm", r.spacing * 1e3),
+                points: r.tip_history.clone(),
+                is_reference: false,
+            })
+            .collect(),
+    });
+    report
+}
