@@ -159,6 +159,9 @@ pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
     if sim.has_temperature() {
         arrays.push(scalar(ParticleField::Temperature));
     }
+    if sim.has_failure() {
+        arrays.push(scalar(ParticleField::Damage));
+    }
     Frame {
         time: sim.time(),
         positions,
@@ -444,12 +447,13 @@ fn write_run_folder(
         Some(e) => ("failed", e.to_string()),
     };
     let summary = format!(
-        "# Written by tlsph at the end of a run.\nstatus = \"{status}\"\nmessage = {message:?}\nscene = {origin:?}\nparticles = {}\nsteps = {}\nend_time = {}\nwall_s = {}\nparticle_steps_per_s = {}\n",
+        "# Written by tlsph at the end of a run.\nstatus = \"{status}\"\nmessage = {message:?}\nscene = {origin:?}\nparticles = {}\nsteps = {}\nend_time = {}\nwall_s = {}\nparticle_steps_per_s = {}\nfailed_particles = {}\n",
         record.particles,
         record.steps,
         scene.end_time(),
         record.wall_s,
         record.particle_steps_per_s(),
+        record.diagnostics.last().map_or(0, |d| d.failed_particles),
         origin = scene.origin,
     );
     let summary_path = partial.join("summary.toml");

@@ -10,7 +10,8 @@ use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
     BodyDescription, BoundaryDescription, EffectsDescription, Formulation, MaterialDescription,
-    Model, ParticleField, SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
+    MaterialModel, Model, ParticleField, SimulationConfig, StressUpdate, SymmetryPlane,
+    WallDescription,
 };
 use toml::Spanned;
 
@@ -890,6 +891,18 @@ fn build_probe<const D: usize>(
         let parsed: ParticleField = f
             .parse()
             .map_err(|e: String| ctx.error(&t.fields.span(), &field("fields"), e))?;
+        if parsed == ParticleField::Damage
+            && !matches!(&materials[body.material].model, MaterialModel::ElasticPlastic(m) if m.failure.is_some())
+        {
+            return Err(ctx.error(
+                &t.fields.span(),
+                &field("fields"),
+                format!(
+                    "`damage` needs a failure model in the material of body `{}`",
+                    body.name
+                ),
+            ));
+        }
         if parsed == ParticleField::Temperature && !materials[body.material].model.has_temperature()
         {
             return Err(ctx.error(

@@ -91,6 +91,19 @@ pub(crate) struct MaterialTable {
     pub specific_heat: Option<Spanned<f64>>,
     pub min_pressure: Option<Spanned<f64>>,
     pub eos: Option<Spanned<EosTable>>,
+    pub failure: Option<Spanned<FailureTable>>,
+}
+
+/// `failure = { model = "...", ... }` of a plastic material.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FailureTable {
+    pub model: String,
+    pub d: Option<Vec<f64>>,
+    pub limit: Option<f64>,
+    pub reference_strain_rate: Option<f64>,
+    pub room_temperature: Option<f64>,
+    pub melt_temperature: Option<f64>,
 }
 
 /// `eos = { model = "...", ... }` of a plastic material.

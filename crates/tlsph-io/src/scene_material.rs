@@ -2,15 +2,18 @@
 //! material models with every parameter checked and located (numerics.md §8).
 
 use crate::scene::{Context, SceneError};
-use crate::scene_file::{EosTable, MaterialTable};
+use crate::scene_file::{EosTable, FailureTable, MaterialTable};
 use std::ops::Range;
 use tlsph_materials::eos::MieGruneisenParameters;
 use tlsph_materials::strength::JohnsonCookStrengthParameters;
 use tlsph_materials::{
-    EquationOfState, JohnsonCookStrength, LinearElastic, LinearEos, MaterialError, MieGruneisen,
-    PolynomialEos, VonMisesPlasticity,
+    EquationOfState, JohnsonCookFailure, JohnsonCookStrength, LinearElastic, LinearEos,
+    MaterialError, MaxPlasticStrainFailure, MaxStressFailure, MieGruneisen, PolynomialEos,
+    VonMisesPlasticity,
 };
-use tlsph_solver::{ElasticPlastic, MaterialModel, PressureModel, StrengthModel, Thermal};
+use tlsph_solver::{
+    ElasticPlastic, FailureModel, MaterialModel, PressureModel, StrengthModel, Thermal,
+};
 use toml::Spanned;
 
 /// Material models and the keys each accepts beyond `name`, `model` and `density`.
@@ -28,6 +31,7 @@ const MODELS: [(&str, &[&str]); 3] = [
             "room_temperature",
             "min_pressure",
             "eos",
+            "failure",
         ],
     ),
     (
@@ -47,6 +51,7 @@ const MODELS: [(&str, &[&str]); 3] = [
             "specific_heat",
             "min_pressure",
             "eos",
+            "failure",
         ],
     ),
 ];
@@ -80,6 +85,7 @@ fn given_keys(m: &MaterialTable) -> Vec<(&'static str, Range<usize>)> {
     push("specific_heat", f(&m.specific_heat));
     push("min_pressure", f(&m.min_pressure));
     push("eos", m.eos.as_ref().map(|x| x.span()));
+    push("failure", m.failure.as_ref().map(|x| x.span()));
     keys
 }
 
@@ -232,13 +238,109 @@ pub(crate) fn material_model(
         None => PressureModel::Hypoelastic,
         Some(t) => PressureModel::Eos(eos(ctx, t, field, e.0.max(0.0), m)?),
     };
+    let failure = match &m.failure {
+        None => None,
+        Some(t) => Some(failure(ctx, t, field, &strength)?),
+    };
     Ok(MaterialModel::ElasticPlastic(ElasticPlastic {
         elastic,
         strength,
         pressure,
         min_pressure,
         thermal,
+        failure,
     }))
+}
+
+/// `failure = { model = "johnson-cook", d = [D1..D5] }` (rate and temperature references from
+/// the Johnson–Cook strength, or given in the table), `{ model = "max-plastic-strain", limit }`
+/// or `{ model = "max-principal-stress", limit }` (numerics.md §8.6, §8.9, §9.3).
+fn failure(
+    ctx: &Context<'_>,
+    t: &Spanned<FailureTable>,
+    field: &dyn Fn(&str) -> String,
+    strength: &StrengthModel,
+) -> Result<FailureModel, SceneError> {
+    let span = t.span();
+    let f = t.get_ref();
+    let err =
+        |key: &str, message: String| ctx.error(&span, &field(&format!("failure.{key}")), message);
+    let locate = |e: MaterialError| {
+        err(
+            e.parameter,
+            format!("{} is not allowed: must be {}", e.value, e.expected),
+        )
+    };
+    let only = |allowed: &[&str]| -> Result<(), SceneError> {
+        let given = [
+            ("d", f.d.is_some()),
+            ("limit", f.limit.is_some()),
+            ("reference_strain_rate", f.reference_strain_rate.is_some()),
+            ("room_temperature", f.room_temperature.is_some()),
+            ("melt_temperature", f.melt_temperature.is_some()),
+        ];
+        for (key, present) in given {
+            if present && !allowed.contains(&key) {
+                return Err(err(
+                    key,
+                    format!("is not a parameter of failure model `{}`", f.model),
+                ));
+            }
+        }
+        Ok(())
+    };
+    match f.model.as_str() {
+        "johnson-cook" => {
+            only(&["d", "reference_strain_rate", "room_temperature", "melt_temperature"])?;
+            let d = f.d.as_ref().ok_or_else(|| err("d", "is required: [D1, D2, D3, D4, D5]".into()))?;
+            if d.len() != 5 {
+                return Err(err("d", format!("needs 5 values D1..D5, got {}", d.len())));
+            }
+            let model = JohnsonCookFailure::new(d[0], d[1], d[2], d[3], d[4]).map_err(locate)?;
+            // ε̇0, T_room, T_melt: from the Johnson–Cook strength unless given here.
+            let from_strength = match strength {
+                StrengthModel::JohnsonCook { model, .. } => {
+                    let p = model.parameters();
+                    Some((p.reference_strain_rate, p.room_temperature, p.melt_temperature))
+                }
+                StrengthModel::VonMises(_) => None,
+            };
+            let pick = |given: Option<f64>, index: usize, key: &str| -> Result<f64, SceneError> {
+                given
+                    .or(from_strength.map(|t| [t.0, t.1, t.2][index]))
+                    .ok_or_else(|| err(key, "is required (the strength model does not provide it)".into()))
+            };
+            let reference_strain_rate = pick(f.reference_strain_rate, 0, "reference_strain_rate")?;
+            let room_temperature = pick(f.room_temperature, 1, "room_temperature")?;
+            let melt_temperature = pick(f.melt_temperature, 2, "melt_temperature")?;
+            if !(reference_strain_rate.is_finite() && reference_strain_rate > 0.0) {
+                return Err(err("reference_strain_rate", format!("must be > 0, got {reference_strain_rate}")));
+            }
+            if melt_temperature.is_nan() || melt_temperature <= room_temperature {
+                return Err(err("melt_temperature", format!("must exceed room_temperature ({room_temperature}), got {melt_temperature}")));
+            }
+            Ok(FailureModel::JohnsonCook {
+                model,
+                reference_strain_rate,
+                room_temperature,
+                melt_temperature,
+            })
+        }
+        "max-plastic-strain" => {
+            only(&["limit"])?;
+            let limit = f.limit.ok_or_else(|| err("limit", "is required".into()))?;
+            Ok(FailureModel::MaxPlasticStrain(MaxPlasticStrainFailure::new(limit).map_err(locate)?))
+        }
+        "max-principal-stress" => {
+            only(&["limit"])?;
+            let limit = f.limit.ok_or_else(|| err("limit", "is required".into()))?;
+            Ok(FailureModel::MaxPrincipalStress(MaxStressFailure::new(limit).map_err(locate)?))
+        }
+        other => Err(err(
+            "model",
+            format!("unknown failure model `{other}`; available: johnson-cook, max-plastic-strain, max-principal-stress"),
+        )),
+    }
 }
 
 fn eos(

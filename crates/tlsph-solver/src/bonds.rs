@@ -160,6 +160,79 @@ pub(crate) fn build_bonds<const D: usize>(
     (bonds, report)
 }
 
+impl<const D: usize> Bonds<D> {
+    /// Takes newly failed particles out of every kernel sum (numerics.md §9.3): their bonds
+    /// get zero weight, and every surviving neighbour's gradients are rebuilt without them —
+    /// Shepard sum, quotient rule and correction B_I included — together with the reverse
+    /// gradients that other particles read from them. Sequential and rare (only when a
+    /// particle fails), so results stay deterministic.
+    pub(crate) fn remove_failed(
+        &mut self,
+        failed_now: &[usize],
+        removed: &[bool],
+        positions0: &[Vector<D>],
+        volumes0: &[f64],
+        kernel_of: impl Fn(usize) -> AnyKernel,
+        corrected: bool,
+    ) {
+        let mut affected = Vec::new();
+        for &f in failed_now {
+            for b in self.range(f) {
+                let j = self.neighbours[b] as usize;
+                self.gradient[b] = Vector::zeros();
+                self.reverse_gradient[b] = Vector::zeros();
+                if let Some(back) = self.bond(j, f) {
+                    self.gradient[back] = Vector::zeros();
+                    self.reverse_gradient[back] = Vector::zeros();
+                }
+                if !removed[j] {
+                    affected.push(j);
+                }
+            }
+            self.gradient_sum[f] = Vector::zeros();
+        }
+        affected.sort_unstable();
+        affected.dedup();
+        for &i in &affected {
+            let kernel = kernel_of(i);
+            let range = self.range(i);
+            let alive: Vec<usize> = self.neighbours[range.clone()]
+                .iter()
+                .map(|&j| j as usize)
+                .filter(|&j| !removed[j])
+                .collect();
+            let gradients = gradients_of(i, &alive, positions0, volumes0, &kernel, corrected).0;
+            let mut by_neighbour = alive.iter().zip(&gradients);
+            let mut next = by_neighbour.next();
+            let mut sum = Vector::<D>::zeros();
+            for b in range {
+                let j = self.neighbours[b] as usize;
+                match next {
+                    Some((&a, g)) if a == j => {
+                        self.gradient[b] = g * volumes0[j];
+                        sum += self.gradient[b];
+                        if let Some(back) = self.bond(j, i) {
+                            self.reverse_gradient[back] = g * volumes0[i];
+                        }
+                        next = by_neighbour.next();
+                    }
+                    _ => self.gradient[b] = Vector::zeros(),
+                }
+            }
+            self.gradient_sum[i] = sum;
+        }
+    }
+
+    /// Index of bond (i → j), if j is a neighbour of i.
+    fn bond(&self, i: usize, j: usize) -> Option<usize> {
+        let r = self.range(i);
+        self.neighbours[r.clone()]
+            .binary_search(&(j as u32))
+            .ok()
+            .map(|k| r.start + k)
+    }
+}
+
 /// G̃_IJ for all neighbours J of particle `i` (body-local), and whether the correction was
 /// regularised.
 fn particle_gradients<const D: usize>(
@@ -167,22 +240,45 @@ fn particle_gradients<const D: usize>(
     body: &BodyBonds<D>,
     corrected: bool,
 ) -> (Vec<Vector<D>>, bool) {
-    let x = &body.positions0;
-    let v0 = &body.volumes0;
-    let neighbours = body.neighbours.neighbours_of(i);
+    let neighbours: Vec<usize> = body
+        .neighbours
+        .neighbours_of(i)
+        .iter()
+        .map(|&j| j as usize)
+        .collect();
+    gradients_of(
+        i,
+        &neighbours,
+        &body.positions0,
+        &body.volumes0,
+        &body.kernel,
+        corrected,
+    )
+}
+
+/// G̃_IJ of particle `i` towards `neighbours` (indices into `x` and `v0`): raw kernel
+/// gradients, or with `corrected` the Shepard quotient-rule gradient times the
+/// Randles–Libersky correction (numerics.md §6.1–6.2). Also whether B_I was regularised.
+fn gradients_of<const D: usize>(
+    i: usize,
+    neighbours: &[usize],
+    x: &[Vector<D>],
+    v0: &[f64],
+    kernel: &AnyKernel,
+    corrected: bool,
+) -> (Vec<Vector<D>>, bool) {
     let raw: Vec<Vector<D>> = neighbours
         .iter()
-        .map(|&j| body.kernel.gradient(&(x[i] - x[j as usize])))
+        .map(|&j| kernel.gradient(&(x[i] - x[j])))
         .collect();
     if !corrected {
         return (raw, false);
     }
     // Shepard sum including the particle itself (R 4.32): S_I = Σ_J V0_J W_IJ.
-    let mut shepard = v0[i] * body.kernel.value(0.0);
+    let mut shepard = v0[i] * kernel.value(0.0);
     let mut gradient_sum = Vector::<D>::zeros();
     for (&j, g) in neighbours.iter().zip(&raw) {
-        let j = j as usize;
-        shepard += v0[j] * body.kernel.value((x[i] - x[j]).norm());
+        shepard += v0[j] * kernel.value((x[i] - x[j]).norm());
         gradient_sum += g * v0[j];
     }
     // Quotient-rule Shepard gradient (R 6.7): ∇W̃_IJ = (G_IJ S_I − W_IJ Σ_K V0_K G_IK) / S_I².
@@ -190,7 +286,7 @@ fn particle_gradients<const D: usize>(
         .iter()
         .zip(&raw)
         .map(|(&j, g)| {
-            let w = body.kernel.value((x[i] - x[j as usize]).norm());
+            let w = kernel.value((x[i] - x[j]).norm());
             (g * shepard - gradient_sum * w) / (shepard * shepard)
         })
         .collect();
@@ -198,7 +294,6 @@ fn particle_gradients<const D: usize>(
     // G̃_IJ = B_Iᵀ ∇W̃_IJ with B_I = A_I⁻¹, so that Σ_J V0_J (X_J − X_I) ⊗ G̃_IJ = I.
     let mut a = Tensor::<D>::zeros();
     for (&j, g) in neighbours.iter().zip(&normalised) {
-        let j = j as usize;
         a += outer(&(x[j] - x[i]), g) * v0[j];
     }
     let (b, regularised) = guarded_inverse(&a);

@@ -22,6 +22,8 @@ pub struct Diagnostics {
     /// Resultant force of each effect that reports one (walls: the reaction on the particles)
     /// \[N\], padded to 3D.
     pub effect_forces: Vec<(String, Vector3)>,
+    /// Particles failed so far (out of every sum; their mass and momentum still count).
+    pub failed_particles: usize,
 }
 
 impl Diagnostics {

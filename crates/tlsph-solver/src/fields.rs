@@ -29,6 +29,8 @@ pub enum ParticleField {
     PlasticStrain,
     /// Temperature \[K\] (bodies with adiabatic heating only).
     Temperature,
+    /// Damage D (Johnson–Cook) or 1 once failed; 0 in bodies without a failure model.
+    Damage,
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -58,6 +60,7 @@ impl ParticleField {
         "internal_energy",
         "plastic_strain",
         "temperature",
+        "damage",
     ];
 
     /// Whether the field exists in a `dimension`-D run (vector components beyond the
@@ -86,6 +89,7 @@ impl fmt::Display for ParticleField {
             ParticleField::InternalEnergy => f.write_str("internal_energy"),
             ParticleField::PlasticStrain => f.write_str("plastic_strain"),
             ParticleField::Temperature => f.write_str("temperature"),
+            ParticleField::Damage => f.write_str("damage"),
         }
     }
 }
@@ -109,6 +113,7 @@ impl FromStr for ParticleField {
             "internal_energy" => ParticleField::InternalEnergy,
             "plastic_strain" => ParticleField::PlasticStrain,
             "temperature" => ParticleField::Temperature,
+            "damage" => ParticleField::Damage,
             _ => {
                 let (prefix, suffix) = s.rsplit_once('_').ok_or_else(unknown)?;
                 let chars: Vec<char> = suffix.chars().collect();

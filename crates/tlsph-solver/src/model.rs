@@ -2,7 +2,10 @@
 //! or directly in code; consumed once by `Simulation::new`.
 
 use tlsph_kernels::KernelKind;
-use tlsph_materials::{EquationOfState, JohnsonCookStrength, LinearElastic, VonMisesPlasticity};
+use tlsph_materials::{
+    EquationOfState, JohnsonCookFailure, JohnsonCookStrength, LinearElastic,
+    MaxPlasticStrainFailure, MaxStressFailure, VonMisesPlasticity,
+};
 use tlsph_math::Vector;
 
 /// How kernel gradients are formed in the reference configuration (numerics.md §5).
@@ -64,6 +67,9 @@ pub struct SimulationConfig {
 }
 
 /// Constitutive model of a material (closed set; matched once per body per step).
+// One value per material, never per particle: the size difference between variants is
+// irrelevant, and boxing would only add an indirection.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum MaterialModel {
     /// Isotropic linear elasticity (R 5.73–5.75).
@@ -106,6 +112,28 @@ pub struct Thermal {
     pub room_temperature: f64,
 }
 
+/// When a particle of an elastic–plastic material fails (numerics.md §8.6, §9.3). A failed
+/// particle carries no stress, leaves every kernel sum (its neighbours' gradients are rebuilt
+/// without it) and moves on as a free point mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FailureModel {
+    /// Johnson–Cook cumulative damage D = Σ Δε̄p/ε_f(σ*, ε̇*, T*), failure at D ≥ 1.
+    JohnsonCook {
+        /// D1 … D5.
+        model: JohnsonCookFailure,
+        /// ε̇0 of ε̇* = ε̇̄/ε̇0 \[1/s\].
+        reference_strain_rate: f64,
+        /// T_room of T* \[K\].
+        room_temperature: f64,
+        /// T_melt of T* \[K\].
+        melt_temperature: f64,
+    },
+    /// Failure when ε̄p reaches a limit.
+    MaxPlasticStrain(MaxPlasticStrainFailure),
+    /// Failure when the largest principal stress reaches a limit (spall type 2).
+    MaxPrincipalStress(MaxStressFailure),
+}
+
 /// An elastic–plastic hydrocode material.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElasticPlastic {
@@ -119,6 +147,8 @@ pub struct ElasticPlastic {
     pub min_pressure: Option<f64>,
     /// Temperature from plastic work; absent: the temperature stays at the room value.
     pub thermal: Option<Thermal>,
+    /// Failure criterion; absent: particles never fail.
+    pub failure: Option<FailureModel>,
 }
 
 impl ElasticPlastic {

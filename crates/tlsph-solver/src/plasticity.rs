@@ -3,12 +3,13 @@
 //! optional adiabatic heating. Monomorphised per (strength, pressure, state) combination, so
 //! the per-particle loop has no branch on the model (numerics.md §8.1, §8.3–8.5, §8.9).
 
-use crate::model::{ElasticPlastic, PressureModel, StrengthModel, Thermal};
+use crate::model::{ElasticPlastic, FailureModel, PressureModel, StrengthModel, Thermal};
 use crate::particles::Particles;
 use crate::step::{
     cofactor_and_determinant, inverse_and_determinant, ConstitutiveStep, MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
+use tlsph_materials::damage::{stress_triaxiality, TRIAXIALITY_STRESS_FLOOR};
 use tlsph_materials::{
     equivalent_strain_rate, EquationOfState, JohnsonCookStrength, LinearEos, MieGruneisen,
     PlasticReturn, PolynomialEos, VonMisesPlasticity,
@@ -24,15 +25,28 @@ pub(crate) enum PlasticState {
     Strain(Vec<f64>),
     /// [ε̄p, temperature T].
     StrainTemperature(Vec<[f64; 2]>),
+    /// [ε̄p, damage D, status] (status: 0 intact, 1 failed this step, 2 failed and removed).
+    StrainDamage(Vec<[f64; 3]>),
+    /// [ε̄p, T, D, status].
+    StrainTemperatureDamage(Vec<[f64; 4]>),
 }
 
 impl PlasticState {
     /// State for `n` particles of a material.
     pub fn for_material(model: &crate::model::MaterialModel, n: usize) -> Self {
         match model {
-            crate::model::MaterialModel::ElasticPlastic(m) => match m.thermal {
-                Some(t) => PlasticState::StrainTemperature(vec![[0.0, t.room_temperature]; n]),
-                None => PlasticState::Strain(vec![0.0; n]),
+            crate::model::MaterialModel::ElasticPlastic(m) => match (m.thermal, m.failure) {
+                (Some(t), None) => {
+                    PlasticState::StrainTemperature(vec![[0.0, t.room_temperature]; n])
+                }
+                (None, None) => PlasticState::Strain(vec![0.0; n]),
+                (None, Some(_)) => PlasticState::StrainDamage(vec![[0.0; 3]; n]),
+                (Some(t), Some(_)) => {
+                    PlasticState::StrainTemperatureDamage(vec![
+                        [0.0, t.room_temperature, 0.0, 0.0];
+                        n
+                    ])
+                }
             },
             crate::model::MaterialModel::LinearElastic(_) => PlasticState::None,
         }
@@ -44,6 +58,40 @@ impl PlasticState {
             PlasticState::None => None,
             PlasticState::Strain(v) => Some(v[k]),
             PlasticState::StrainTemperature(v) => Some(v[k][0]),
+            PlasticState::StrainDamage(v) => Some(v[k][0]),
+            PlasticState::StrainTemperatureDamage(v) => Some(v[k][0]),
+        }
+    }
+
+    /// Damage of local particle `k`, if the body's material has a failure model (1 once failed
+    /// by a criterion without damage).
+    pub fn damage(&self, k: usize) -> Option<f64> {
+        match self {
+            PlasticState::StrainDamage(v) => Some(if v[k][2] > 0.0 { 1.0 } else { v[k][1] }),
+            PlasticState::StrainTemperatureDamage(v) => {
+                Some(if v[k][3] > 0.0 { 1.0 } else { v[k][2] })
+            }
+            _ => None,
+        }
+    }
+
+    /// Marks the particles that failed in the last update as removed and returns their local
+    /// indices (empty for bodies without a failure model).
+    pub fn take_newly_failed(&mut self) -> Vec<usize> {
+        fn take<const N: usize>(v: &mut [[f64; N]]) -> Vec<usize> {
+            let mut out = Vec::new();
+            for (k, point) in v.iter_mut().enumerate() {
+                if point[N - 1] == 1.0 {
+                    point[N - 1] = 2.0;
+                    out.push(k);
+                }
+            }
+            out
+        }
+        match self {
+            PlasticState::StrainDamage(v) => take(v),
+            PlasticState::StrainTemperatureDamage(v) => take(v),
+            _ => Vec::new(),
         }
     }
 
@@ -51,6 +99,7 @@ impl PlasticState {
     pub fn temperature(&self, k: usize) -> Option<f64> {
         match self {
             PlasticState::StrainTemperature(v) => Some(v[k][1]),
+            PlasticState::StrainTemperatureDamage(v) => Some(v[k][1]),
             _ => None,
         }
     }
@@ -58,7 +107,19 @@ impl PlasticState {
 
 /// Per-particle state a return map reads and updates.
 trait PointState: Send + Sync {
+    /// Whether the state carries damage and a failure status.
+    const HAS_FAILURE: bool = false;
     fn plastic_strain(&self) -> f64;
+    /// Failure status (0 intact, 1 failed this step, 2 removed).
+    fn status(&self) -> f64 {
+        0.0
+    }
+    /// Adds damage and returns the new value.
+    fn add_damage(&mut self, _increment: f64) -> f64 {
+        0.0
+    }
+    /// Marks the particle as failed this step.
+    fn fail(&mut self) {}
     fn temperature(&self) -> Option<f64>;
     fn add_plastic_strain(&mut self, increment: f64);
     /// Adds plastic work per unit mass w (J/kg) as heat, if the state has a temperature.
@@ -100,6 +161,120 @@ impl PointState for [f64; 2] {
         if let Some(t) = thermal {
             // Adiabatic: all plastic work becomes heat (numerics.md §8.5).
             self[1] += work_per_mass / t.specific_heat;
+        }
+    }
+}
+
+impl PointState for [f64; 3] {
+    const HAS_FAILURE: bool = true;
+    #[inline]
+    fn plastic_strain(&self) -> f64 {
+        self[0]
+    }
+    #[inline]
+    fn temperature(&self) -> Option<f64> {
+        None
+    }
+    #[inline]
+    fn add_plastic_strain(&mut self, increment: f64) {
+        self[0] += increment;
+    }
+    #[inline]
+    fn heat(&mut self, _: f64, _: Option<&Thermal>) {}
+    #[inline]
+    fn status(&self) -> f64 {
+        self[2]
+    }
+    #[inline]
+    fn add_damage(&mut self, increment: f64) -> f64 {
+        self[1] += increment;
+        self[1]
+    }
+    #[inline]
+    fn fail(&mut self) {
+        self[2] = 1.0;
+    }
+}
+
+impl PointState for [f64; 4] {
+    const HAS_FAILURE: bool = true;
+    #[inline]
+    fn plastic_strain(&self) -> f64 {
+        self[0]
+    }
+    #[inline]
+    fn temperature(&self) -> Option<f64> {
+        Some(self[1])
+    }
+    #[inline]
+    fn add_plastic_strain(&mut self, increment: f64) {
+        self[0] += increment;
+    }
+    #[inline]
+    fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>) {
+        if let Some(t) = thermal {
+            self[1] += work_per_mass / t.specific_heat;
+        }
+    }
+    #[inline]
+    fn status(&self) -> f64 {
+        self[3]
+    }
+    #[inline]
+    fn add_damage(&mut self, increment: f64) -> f64 {
+        self[2] += increment;
+        self[2]
+    }
+    #[inline]
+    fn fail(&mut self) {
+        self[3] = 1.0;
+    }
+}
+
+/// What a failure criterion sees of the end-of-step state.
+struct FailureInputs<'a> {
+    stress: &'a Tensor3,
+    pressure: f64,
+    equivalent_stress: f64,
+    plastic_strain_increment: f64,
+    rate: f64,
+    temperature: f64,
+    /// σ̄ below this carries no Johnson–Cook damage.
+    stress_floor: f64,
+}
+
+/// Evaluates the failure model after the return map; true when the particle fails now.
+#[inline]
+fn fails<T: PointState>(
+    failure: &Option<FailureModel>,
+    point: &mut T,
+    x: &FailureInputs<'_>,
+) -> bool {
+    match failure {
+        None => false,
+        Some(FailureModel::MaxPlasticStrain(m)) => m.fails(point.plastic_strain()),
+        Some(FailureModel::MaxPrincipalStress(m)) => m.fails(x.stress),
+        Some(FailureModel::JohnsonCook {
+            model,
+            reference_strain_rate,
+            room_temperature,
+            melt_temperature,
+        }) => {
+            // Skip while σ̄ is negligible: σ* is meaningless there (numerics.md §8.6 guard).
+            let Some(triaxiality) =
+                stress_triaxiality(x.pressure, x.equivalent_stress, x.stress_floor)
+            else {
+                return false;
+            };
+            let homologous =
+                (x.temperature - room_temperature) / (melt_temperature - room_temperature);
+            let increment = model.damage_increment(
+                x.plastic_strain_increment,
+                triaxiality,
+                x.rate / reference_strain_rate,
+                homologous,
+            );
+            point.add_damage(increment) >= 1.0
         }
     }
 }
@@ -235,6 +410,12 @@ fn with_state<const D: usize, P: Pressure, S: Strength>(
         PlasticState::StrainTemperature(v) => {
             update::<D, P, S, [f64; 2]>(material, pressure, strength, step, p, v)
         }
+        PlasticState::StrainDamage(v) => {
+            update::<D, P, S, [f64; 3]>(material, pressure, strength, step, p, v)
+        }
+        PlasticState::StrainTemperatureDamage(v) => {
+            update::<D, P, S, [f64; 4]>(material, pressure, strength, step, p, v)
+        }
         PlasticState::None => unreachable!("elastic-plastic bodies always carry a plastic state"),
     }
 }
@@ -254,6 +435,12 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
     let rho0 = step.density0;
     let shear = material.elastic.shear_modulus();
     let min_pressure = material.min_pressure.unwrap_or(f64::NEG_INFINITY);
+    // σ̄ below 1e-9 of the initial yield stress carries no damage (numerics.md §8.6 guard).
+    let stress_floor = TRIAXIALITY_STRESS_FLOOR
+        * match material.strength {
+            StrengthModel::VonMises(vm) => vm.initial_yield_stress(),
+            StrengthModel::JohnsonCook { model, .. } => model.parameters().a,
+        };
     let thermal = material.thermal.as_ref();
     let room_temperature = thermal.map_or(0.0, |t| t.room_temperature);
     let r = step.range.clone();
@@ -269,6 +456,13 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
         .with_min_len(MIN_PARTICLES_PER_TASK)
         .for_each(|(k, ((((sigma, pk1), jac), energy), point))| {
             let f = embed_with_identity(&f_all[k]);
+            if T::HAS_FAILURE && point.status() > 0.0 {
+                // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
+                *sigma = Tensor3::zeros();
+                *pk1 = Tensor::<D>::zeros();
+                *jac = 1.0;
+                return;
+            }
             let f_dot = embed_with_zeros(&f_dot_all[k]);
             let f_half = f - f_dot * (0.5 * dt);
             let (l, j_half) = match inverse_and_determinant(&f_half) {
@@ -294,12 +488,30 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
             let temperature = point.temperature().unwrap_or(room_temperature);
             let rate = equivalent_strain_rate(&d);
             let ret = strength.return_map(&trial, shear, point.plastic_strain(), rate, temperature);
-            let sigma_new = ret.deviator - Tensor3::identity() * pressure;
+            let mut sigma_new = ret.deviator - Tensor3::identity() * pressure;
             *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
             // Plastic work per unit mass at the end-of-step flow stress: σ̄ Δε̄p / ρ.
             let flow = (1.5 * ret.deviator.component_mul(&ret.deviator).sum()).sqrt();
             point.heat(flow * ret.plastic_strain_increment * j / rho0, thermal);
             point.add_plastic_strain(ret.plastic_strain_increment);
+            if T::HAS_FAILURE
+                && fails(
+                    &material.failure,
+                    point,
+                    &FailureInputs {
+                        stress: &sigma_new,
+                        pressure,
+                        equivalent_stress: flow,
+                        plastic_strain_increment: ret.plastic_strain_increment,
+                        rate,
+                        temperature,
+                        stress_floor,
+                    },
+                )
+            {
+                point.fail();
+                sigma_new = Tensor3::zeros();
+            }
             *sigma = sigma_new;
             *jac = j;
             *pk1 = if j != 0.0 && j.is_finite() {

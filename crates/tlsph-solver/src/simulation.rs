@@ -74,6 +74,12 @@ pub struct Simulation<const D: usize> {
     prescribed: Vec<PrescribedSet<D>>,
     /// Symmetry ghosts (empty without symmetry planes).
     ghosts: Ghosts<D>,
+    /// Each body's kernel (to rebuild gradients when particles fail).
+    kernels: Vec<tlsph_kernels::AnyKernel>,
+    /// Failed particles, out of every sum (empty unless a failure model is declared).
+    removed: Vec<bool>,
+    /// Number of failed particles.
+    failed_count: usize,
     /// Plastic state per body (empty for elastic bodies).
     plastic: Vec<PlasticState>,
     /// Declared effects with their booked energies (empty when none is declared).
@@ -137,11 +143,13 @@ impl<const D: usize> Simulation<D> {
         let planes = &model.effects.symmetry_planes;
         let mut ghosts = Ghosts::default();
         let mut body_bonds = Vec::with_capacity(bodies.len());
+        let mut kernels = Vec::with_capacity(bodies.len());
         for info in &bodies {
             let kernel = config
                 .kernel
                 .build(D, info.smoothing_length)
                 .map_err(|e| SetupError::Kernel(e.to_string()))?;
+            kernels.push(kernel);
             let mut local = mirror_body(info, &particles, planes, kernel)?;
             // Append this body's ghosts as particles (never integrated; refreshed each step).
             for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
@@ -220,6 +228,20 @@ impl<const D: usize> Simulation<D> {
             .iter()
             .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
             .collect();
+        let any_failure = bodies.iter().any(|b| {
+            matches!(&model.materials[b.material].model, MaterialModel::ElasticPlastic(m) if m.failure.is_some())
+        });
+        if any_failure && !planes.is_empty() {
+            return Err(SetupError::InvalidConfig {
+                field: "symmetry_plane",
+                message: "failure models cannot be combined with symmetry planes yet (a failed particle's ghost would keep it in the sums)".into(),
+            });
+        }
+        let removed = if any_failure {
+            vec![false; particles.len()]
+        } else {
+            Vec::new()
+        };
         let effects = build_effects(&model, &bodies, &particles, &bonds, n_real)?;
         let n_effect = if effects.is_empty() { 0 } else { n_real };
         let mut sim = Self {
@@ -227,6 +249,9 @@ impl<const D: usize> Simulation<D> {
             chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
             effects,
             ghosts,
+            kernels,
+            removed,
+            failed_count: 0,
             config,
             materials: model.materials.iter().map(|m| m.model).collect(),
             bodies,
@@ -282,6 +307,9 @@ impl<const D: usize> Simulation<D> {
             }
         }
         self.ghosts.refresh_stress(&mut self.particles);
+        if !self.removed.is_empty() {
+            self.remove_newly_failed();
+        }
         if let Some(i) = first_index_where(&self.particles.jacobian, |j| j.is_nan() || *j <= 0.0) {
             let jacobian = self.particles.jacobian[i];
             if !jacobian.is_finite() {
@@ -369,6 +397,52 @@ impl<const D: usize> Simulation<D> {
             dt
         };
         (dt, best.1)
+    }
+
+    /// Takes the particles that failed in this step's constitutive update out of every sum.
+    fn remove_newly_failed(&mut self) {
+        let mut newly = Vec::new();
+        for (b, info) in self.bodies.iter().enumerate() {
+            newly.extend(
+                self.plastic[b]
+                    .take_newly_failed()
+                    .into_iter()
+                    .map(|k| info.range.start + k),
+            );
+        }
+        if newly.is_empty() {
+            return;
+        }
+        for &i in &newly {
+            self.removed[i] = true;
+        }
+        self.failed_count += newly.len();
+        let bodies = &self.bodies;
+        let kernels = &self.kernels;
+        let body_of = |i: usize| {
+            bodies
+                .iter()
+                .position(|b| b.range.contains(&i))
+                .unwrap_or(0)
+        };
+        self.bonds.remove_failed(
+            &newly,
+            &self.removed,
+            &self.particles.positions0,
+            &self.particles.volumes0,
+            |i| kernels[body_of(i)],
+            self.config.formulation == Formulation::TotalLagrangianCorrected,
+        );
+    }
+
+    /// Number of particles that have failed so far.
+    pub fn failed_particles(&self) -> usize {
+        self.failed_count
+    }
+
+    /// Whether any body has a failure model (and so a damage field).
+    pub fn has_failure(&self) -> bool {
+        !self.removed.is_empty()
     }
 
     /// Adds every declared effect's accelerations at t^n, kicks with them, and books their
@@ -604,6 +678,11 @@ impl<const D: usize> Simulation<D> {
                 // Elastic bodies have no plastic strain: 0 is the true value.
                 self.plastic[b].plastic_strain(k).unwrap_or(0.0)
             }
+            ParticleField::Damage => {
+                let b = self.body_of(i);
+                let k = i - self.bodies[b].range.start;
+                self.plastic[b].damage(k).unwrap_or(0.0)
+            }
             ParticleField::Temperature => {
                 let b = self.body_of(i);
                 let k = i - self.bodies[b].range.start;
@@ -650,6 +729,7 @@ impl<const D: usize> Simulation<D> {
             d.linear_momentum += v * m;
             d.angular_momentum += x.cross(&v) * m;
         }
+        d.failed_particles = self.failed_count;
         for booked in &self.effects {
             let name = booked.effect.name().to_string();
             if let Some(f) = booked.effect.resultant() {

@@ -547,3 +547,47 @@ fn keys_of_another_eos_model_are_always_rejected() {
         assert!(e.field.starts_with("material[copper].eos."), "{eos}: {e}");
     }
 }
+
+#[test]
+fn failure_models_parse_and_their_errors_are_located() {
+    let with = |failure: &str| {
+        PLASTIC.replace(
+            "tangent_modulus = 1.1e9",
+            &format!("tangent_modulus = 1.1e9\nfailure = {failure}"),
+        )
+    };
+    let ok = with("{ model = \"max-plastic-strain\", limit = 0.8 }");
+    let scene = parse_scene(&ok, "fail.toml").unwrap();
+    let DimensionModel::Two(m) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticPlastic(p) = &m.materials[0].model else {
+        panic!("plastic")
+    };
+    assert!(p.failure.is_some());
+    for (failure, field) in [
+        (
+            "{ model = \"max-plastic-strain\", limit = -1.0 }",
+            "failure.max_plastic_strain",
+        ),
+        ("{ model = \"max-plastic-strain\" }", "failure.limit"),
+        (
+            "{ model = \"johnson-cook\", d = [0.5, 0.0, 0.0, 0.0] }",
+            "failure.d",
+        ),
+        (
+            "{ model = \"johnson-cook\", d = [0.5, 0.0, 0.0, 0.0, 0.0] }",
+            "failure.reference_strain_rate",
+        ),
+        (
+            "{ model = \"max-principal-stress\", limit = 1e9, d = [1.0] }",
+            "failure.d",
+        ),
+        ("{ model = \"crack\" }", "failure.model"),
+    ] {
+        let text = with(failure);
+        let e = error_of(&text);
+        assert!(e.field.ends_with(field), "{failure}: {e}");
+        assert_eq!(e.line, Some(line_of(&text, "failure = ")), "{failure}: {e}");
+    }
+}

@@ -19,6 +19,7 @@ fn copper() -> ElasticPlastic {
         pressure: PressureModel::Hypoelastic,
         min_pressure: None,
         thermal: None,
+        failure: None,
     }
 }
 
@@ -122,4 +123,61 @@ fn plasticity_needs_the_rate_form() {
     m.materials[0].model = MaterialModel::ElasticPlastic(copper());
     let err = Simulation::new(m).unwrap_err();
     assert!(err.to_string().contains("jaumann-rate"), "{err}");
+}
+
+#[test]
+fn a_failed_particle_leaves_every_sum_and_the_halves_separate() {
+    // A 1D bar whose halves fly apart at ±0.05 c: the centre yields in tension, reaches the
+    // failure strain and fails; afterwards no tension crosses the gap, so the halves keep
+    // moving apart, momentum stays zero, and the failed particle carries no stress.
+    use tlsph_materials::MaxPlasticStrainFailure;
+    use tlsph_solver::FailureModel;
+    let dx = 0.01;
+    let positions = lattice([100], dx);
+    let mut m = model(
+        positions.clone(),
+        dx,
+        |x| Vector::<1>::new(if x[0] < 0.5 { -0.05 } else { 0.05 }),
+        Setup {
+            formulation: Formulation::TotalLagrangianCorrected,
+            end_time: 3.0,
+            ..Setup::default()
+        },
+    );
+    let elastic = LinearElastic::new(0.9, 0.2).unwrap();
+    m.materials[0].model = MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic,
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: None,
+        failure: Some(FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(0.05).unwrap(),
+        )),
+    });
+    let mut sim = Simulation::new(m).unwrap();
+    let mut worst_p: f64 = 0.0;
+    sim.run(|s, _| worst_p = worst_p.max(s.diagnostics().linear_momentum.x.abs()))
+        .unwrap();
+    assert!(sim.failed_particles() >= 1, "the centre must fail");
+    assert!(worst_p < 1e-15, "momentum {worst_p:e}");
+    let failed: Vec<usize> = (0..sim.n_particles())
+        .filter(|&i| sim.sample(ParticleField::Damage, i) >= 1.0)
+        .collect();
+    assert_eq!(failed.len(), sim.failed_particles());
+    for &i in &failed {
+        assert_eq!(sim.stresses()[i], Tensor3::zeros());
+        // Failed particles sit near the centre, where the tension was largest.
+        assert!(
+            (positions[i][0] - 0.5).abs() < 0.1,
+            "failed at {}",
+            positions[i][0]
+        );
+    }
+    // The halves separate: the right half moves right, the left half left.
+    let v_left = sim.velocity(10)[0];
+    let v_right = sim.velocity(89)[0];
+    assert!(v_left < 0.0 && v_right > 0.0, "{v_left} {v_right}");
+    let gap = sim.displacements()[99][0] - sim.displacements()[0][0];
+    assert!(gap > 0.1, "halves did not separate: {gap}");
 }
