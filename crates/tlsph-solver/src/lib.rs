@@ -30,5 +30,5 @@ pub use model::{
     Formulation, MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig,
     StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };
-pub use simulation::{BodyInfo, Simulation, StepReport};
+pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

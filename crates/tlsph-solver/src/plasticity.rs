@@ -6,7 +6,7 @@
 use crate::model::{ElasticPlastic, FailureModel, PressureModel, StrengthModel, Thermal};
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, inverse_and_determinant, ConstitutiveStep, MIN_PARTICLES_PER_TASK,
+    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{stress_triaxiality, TRIAXIALITY_STRESS_FLOOR};
@@ -14,7 +14,7 @@ use tlsph_materials::{
     equivalent_strain_rate, EquationOfState, JohnsonCookStrength, LinearEos, MieGruneisen,
     PlasticReturn, PolynomialEos, VonMisesPlasticity,
 };
-use tlsph_math::{deviator, embed_with_identity, embed_with_zeros, project, sym, Tensor, Tensor3};
+use tlsph_math::{deviator, embed_with_identity, embed_with_zeros, project, Tensor, Tensor3};
 
 /// Per-particle plastic state of a body: only what its material needs.
 #[derive(Debug, Clone)]
@@ -464,13 +464,7 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
                 return;
             }
             let f_dot = embed_with_zeros(&f_dot_all[k]);
-            let f_half = f - f_dot * (0.5 * dt);
-            let (l, j_half) = match inverse_and_determinant(&f_half) {
-                (Some(inv), det) => (f_dot * inv, det),
-                (None, _) => (Tensor3::zeros(), f64::NAN),
-            };
-            let d = sym(&l);
-            let w = (l - l.transpose()) * 0.5;
+            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
             let (cofactor, j) = cofactor_and_determinant(&f);
             // Elastic predictor of the deviator with an exactly orthogonal rotation.
             let s_old = deviator(sigma);

@@ -38,6 +38,17 @@ pub struct BodyInfo {
     pub sound_speed0: f64,
 }
 
+/// Bond geometry at one instant (see [`Simulation::bond_metrics`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BondMetrics {
+    /// Smallest |x_IJ|/|X_IJ| (clumping shows as a value far below 1).
+    pub min_stretch: f64,
+    /// Largest |x_IJ|/|X_IJ| (numerical fracture shows as a value far above 1).
+    pub max_stretch: f64,
+    /// RMS of |F_I X_IJ − x_IJ|/|X_IJ| over bonds: the zero-energy (hourglass) distortion.
+    pub hourglass_rms: f64,
+}
+
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepReport {
@@ -433,6 +444,45 @@ impl<const D: usize> Simulation<D> {
             |i| kernels[body_of(i)],
             self.config.formulation == Formulation::TotalLagrangianCorrected,
         );
+    }
+
+    /// Geometric health of the reference bonds at the current time (for stability and
+    /// hourglass diagnostics; one pass over the bonds, not part of a step):
+    /// the smallest and largest bond stretch |x_IJ|/|X_IJ| over real–real bonds of surviving
+    /// particles, and the RMS of the hourglass error |F_I X_IJ − x_IJ| / |X_IJ|
+    /// (numerics.md §10.5: zero for any deformation F reproduces exactly).
+    pub fn bond_metrics(&self) -> BondMetrics {
+        let n = self.n_particles();
+        let p = &self.particles;
+        let alive = |i: usize| self.removed.is_empty() || !self.removed[i];
+        let (mut min, mut max, mut sum_sq, mut count) = (f64::INFINITY, 0.0f64, 0.0f64, 0usize);
+        for i in (0..n).filter(|&i| alive(i)) {
+            let xi = p.positions0[i] + p.displacements[i];
+            for &j in self.bonds.neighbours_of(i) {
+                let j = j as usize;
+                if j >= n || !alive(j) {
+                    continue;
+                }
+                let big_x = p.positions0[i] - p.positions0[j];
+                let small_x = xi - (p.positions0[j] + p.displacements[j]);
+                let length0 = big_x.norm();
+                let stretch = small_x.norm() / length0;
+                min = min.min(stretch);
+                max = max.max(stretch);
+                let error = (p.deformation_gradient[i] * big_x - small_x).norm() / length0;
+                sum_sq += error * error;
+                count += 1;
+            }
+        }
+        BondMetrics {
+            min_stretch: min,
+            max_stretch: max,
+            hourglass_rms: if count > 0 {
+                (sum_sq / count as f64).sqrt()
+            } else {
+                0.0
+            },
+        }
     }
 
     /// Number of particles that have failed so far.

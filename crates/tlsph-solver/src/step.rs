@@ -111,6 +111,19 @@ pub(crate) fn inverse_and_determinant(m: &Tensor3) -> (Option<Tensor3>, f64) {
     (finite.then_some(inverse), det)
 }
 
+/// Rate of deformation D, spin W and det F at n−½ from F^n and Ḟ^{n−½}
+/// (F^{n−½} = F^n − ½Δt Ḟ, L = Ḟ (F^{n−½})⁻¹, D = sym L, W = skew L; R 5.2, 5.26–5.29).
+/// A singular F^{n−½} gives zero rates and a NaN determinant, which the inversion check reports.
+#[inline]
+pub(crate) fn midpoint_rates(f: &Tensor3, f_dot: &Tensor3, dt: f64) -> (Tensor3, Tensor3, f64) {
+    let f_half = f - f_dot * (0.5 * dt);
+    let (l, j_half) = match inverse_and_determinant(&f_half) {
+        (Some(inv), det) => (f_dot * inv, det),
+        (None, _) => (Tensor3::zeros(), f64::NAN),
+    };
+    (sym(&l), (l - l.transpose()) * 0.5, j_half)
+}
+
 /// Inputs of one constitutive update over a body's particle range.
 pub(crate) struct ConstitutiveStep {
     /// Particle range of the body.
@@ -146,13 +159,7 @@ pub(crate) fn update_jaumann_rate<const D: usize>(
         .for_each(|(k, (((sigma, pk1), jac), energy))| {
             let f = embed_with_identity(&f_all[k]);
             let f_dot = embed_with_zeros(&f_dot_all[k]);
-            let f_half = f - f_dot * (0.5 * dt);
-            let (l, j_half) = match inverse_and_determinant(&f_half) {
-                (Some(inv), det) => (f_dot * inv, det),
-                (None, _) => (Tensor3::zeros(), f64::NAN),
-            };
-            let d = sym(&l);
-            let w = (l - l.transpose()) * 0.5;
+            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
             let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
             *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
             *sigma = sigma_new;
