@@ -3,6 +3,7 @@
 
 mod allocation;
 mod effects;
+mod long_runs;
 mod plasticity;
 mod symmetry;
 
