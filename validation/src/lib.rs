@@ -47,6 +47,11 @@ pub fn problems() -> Vec<Problem> {
             run: problems::r_p6::run,
         },
         Problem {
+            id: problems::r_c7x::ID,
+            title: "XSPH vs artificial viscosity, symmetric steel rod impact",
+            run: problems::r_c7x::run,
+        },
+        Problem {
             id: "R-C3",
             title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
             run: stability::run,

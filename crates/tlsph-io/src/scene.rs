@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BodyDescription, BoundaryDescription, EffectsDescription, Formulation, MaterialDescription,
-    MaterialModel, Model, ParticleField, SimulationConfig, StressUpdate, SymmetryPlane,
-    WallDescription,
+    BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription, Formulation,
+    MaterialDescription, MaterialModel, Model, ParticleField, SimulationConfig, StressUpdate,
+    SymmetryPlane, WallDescription,
 };
 use toml::Spanned;
 
@@ -483,6 +483,42 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         effects
             .symmetry_planes
             .push(SymmetryPlane { axis, position });
+    }
+    if let Some(v) = &file.bulk_viscosity {
+        let non_negative = |x: &Spanned<f64>, key: &str| {
+            let value = *x.get_ref();
+            if value.is_finite() && value >= 0.0 {
+                Ok(value)
+            } else {
+                Err(ctx.error(
+                    &x.span(),
+                    key,
+                    format!("must be a finite number ≥ 0, got {value}"),
+                ))
+            }
+        };
+        effects.bulk_viscosity = Some(BulkViscosity {
+            quadratic: non_negative(&v.quadratic, "bulk_viscosity.quadratic")?,
+            linear: non_negative(&v.linear, "bulk_viscosity.linear")?,
+        });
+        if stress_update == StressUpdate::GreenLagrange {
+            return Err(ctx.error(
+                &v.quadratic.span(),
+                "bulk_viscosity",
+                "needs stress_update = \"jaumann-rate\"".into(),
+            ));
+        }
+    }
+    if let Some(x) = &file.xsph {
+        let epsilon = *x.epsilon.get_ref();
+        if !(epsilon.is_finite() && epsilon > 0.0 && epsilon <= 1.0) {
+            return Err(ctx.error(
+                &x.epsilon.span(),
+                "xsph.epsilon",
+                format!("must be in (0, 1], got {epsilon}"),
+            ));
+        }
+        effects.xsph = Some(epsilon);
     }
     if let Some(h) = &file.hourglass_control {
         effects.hourglass_control =

@@ -26,6 +26,25 @@ pub(crate) struct SceneFile {
     pub hourglass_control: Option<HourglassTable>,
     #[serde(default)]
     pub symmetry_plane: Vec<SymmetryPlaneTable>,
+    #[serde(default)]
+    pub bulk_viscosity: Option<BulkViscosityTable>,
+    #[serde(default)]
+    pub xsph: Option<XsphTable>,
+}
+
+/// `[bulk_viscosity]`: artificial bulk viscosity coefficients.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BulkViscosityTable {
+    pub quadratic: Spanned<f64>,
+    pub linear: Spanned<f64>,
+}
+
+/// `[xsph]`: XSPH velocity smoothing.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct XsphTable {
+    pub epsilon: Spanned<f64>,
 }
 
 /// `[[symmetry_plane]]`: a coordinate plane modelled with mirror (ghost) particles.

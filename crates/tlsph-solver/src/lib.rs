@@ -26,9 +26,9 @@ pub use diagnostics::Diagnostics;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    BodyDescription, BoundaryDescription, EffectsDescription, ElasticPlastic, FailureModel,
-    Formulation, MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig,
-    StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
+    BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription, ElasticPlastic,
+    FailureModel, Formulation, MaterialDescription, MaterialModel, Model, PressureModel,
+    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -249,6 +249,17 @@ pub struct SymmetryPlane {
     pub position: f64,
 }
 
+/// Artificial bulk ("nodal") viscosity (numerics.md §10.2, R §7.5–7.6): in compression
+/// (tr D < 0) q = ρ ℓ (Q1 ℓ (tr D)² − Q2 c tr D) with ℓ = h is added to the pressure of the
+/// stress that drives the forces (not to the stored elastic stress), and heats the material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BulkViscosity {
+    /// Quadratic coefficient Q1.
+    pub quadratic: f64,
+    /// Linear coefficient Q2.
+    pub linear: f64,
+}
+
 /// Optional effects of a run; absent effects cost nothing.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct EffectsDescription<const D: usize> {
@@ -258,6 +269,11 @@ pub struct EffectsDescription<const D: usize> {
     pub hourglass_control: Option<f64>,
     /// Symmetry planes (several at once for quarter and eighth models).
     pub symmetry_planes: Vec<SymmetryPlane>,
+    /// Artificial bulk viscosity.
+    pub bulk_viscosity: Option<BulkViscosity>,
+    /// XSPH coefficient ε (numerics.md §10.4, TL variant): particles move, and Ḟ is built,
+    /// with v̂_I = v_I + ε Σ_J V0_J (v_J − v_I) W̃_IJ.
+    pub xsph: Option<f64>,
 }
 
 /// Everything needed to start a simulation.

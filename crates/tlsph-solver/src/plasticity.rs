@@ -3,10 +3,13 @@
 //! optional adiabatic heating. Monomorphised per (strength, pressure, state) combination, so
 //! the per-particle loop has no branch on the model (numerics.md §8.1, §8.3–8.5, §8.9).
 
-use crate::model::{ElasticPlastic, FailureModel, PressureModel, StrengthModel, Thermal};
+use crate::model::{
+    BulkViscosity, ElasticPlastic, FailureModel, PressureModel, StrengthModel, Thermal,
+};
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, MIN_PARTICLES_PER_TASK,
+    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, Viscosity,
+    MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{stress_triaxiality, TRIAXIALITY_STRESS_FLOOR};
@@ -355,24 +358,26 @@ eos_pressure!(MieGruneisen);
 pub(crate) fn update_elastic_plastic<const D: usize>(
     material: &ElasticPlastic,
     step: &ConstitutiveStep,
+    viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
     state: &mut PlasticState,
 ) {
+    let v = viscosity;
     match &material.pressure {
         PressureModel::Hypoelastic => {
             let law = Hypoelastic {
                 bulk: material.elastic.bulk_modulus(),
             };
-            with_strength(material, &law, step, p, state)
+            with_strength(material, &law, step, v, p, state)
         }
         PressureModel::Eos(EquationOfState::Linear(e)) => {
-            with_strength(material, e, step, p, state)
+            with_strength(material, e, step, v, p, state)
         }
         PressureModel::Eos(EquationOfState::Polynomial(e)) => {
-            with_strength(material, e, step, p, state)
+            with_strength(material, e, step, v, p, state)
         }
         PressureModel::Eos(EquationOfState::MieGruneisen(e)) => {
-            with_strength(material, e, step, p, state)
+            with_strength(material, e, step, v, p, state)
         }
     }
 }
@@ -381,40 +386,63 @@ fn with_strength<const D: usize, P: Pressure>(
     material: &ElasticPlastic,
     pressure: &P,
     step: &ConstitutiveStep,
+    viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
     state: &mut PlasticState,
 ) {
     match material.strength {
-        StrengthModel::VonMises(vm) => with_state(material, pressure, &vm, step, p, state),
-        StrengthModel::JohnsonCook { model, iterate } => with_state(
+        StrengthModel::VonMises(vm) => {
+            with_viscosity(material, pressure, &vm, step, viscosity, p, state)
+        }
+        StrengthModel::JohnsonCook { model, iterate } => with_viscosity(
             material,
             pressure,
             &JohnsonCook { model, iterate },
             step,
+            viscosity,
             p,
             state,
         ),
     }
 }
 
-fn with_state<const D: usize, P: Pressure, S: Strength>(
+#[allow(clippy::too_many_arguments)]
+fn with_viscosity<const D: usize, P: Pressure, S: Strength>(
     material: &ElasticPlastic,
     pressure: &P,
     strength: &S,
     step: &ConstitutiveStep,
+    viscosity: Option<BulkViscosity>,
+    p: &mut Particles<D>,
+    state: &mut PlasticState,
+) {
+    match viscosity {
+        None => with_state(material, pressure, strength, step, &NoViscosity, p, state),
+        Some(v) => with_state(material, pressure, strength, step, &v, p, state),
+    }
+}
+
+fn with_state<const D: usize, P: Pressure, S: Strength, V: Viscosity>(
+    material: &ElasticPlastic,
+    pressure: &P,
+    strength: &S,
+    step: &ConstitutiveStep,
+    viscosity: &V,
     p: &mut Particles<D>,
     state: &mut PlasticState,
 ) {
     match state {
-        PlasticState::Strain(v) => update::<D, P, S, f64>(material, pressure, strength, step, p, v),
+        PlasticState::Strain(v) => {
+            update::<D, P, S, V, f64>(material, pressure, strength, step, viscosity, p, v)
+        }
         PlasticState::StrainTemperature(v) => {
-            update::<D, P, S, [f64; 2]>(material, pressure, strength, step, p, v)
+            update::<D, P, S, V, [f64; 2]>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainDamage(v) => {
-            update::<D, P, S, [f64; 3]>(material, pressure, strength, step, p, v)
+            update::<D, P, S, V, [f64; 3]>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainTemperatureDamage(v) => {
-            update::<D, P, S, [f64; 4]>(material, pressure, strength, step, p, v)
+            update::<D, P, S, V, [f64; 4]>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::None => unreachable!("elastic-plastic bodies always carry a plastic state"),
     }
@@ -423,14 +451,16 @@ fn with_state<const D: usize, P: Pressure, S: Strength>(
 /// The per-particle loop (R 5.82–5.86 with a return map):
 /// s* = Q s Qᵀ + 2G Δt D′ (Hughes–Winget Q), p from the pressure law (then the cutoff),
 /// s = return_map(s*), σ = −p I + s, e += Δt σ^{n−½}:D/ρ^{n−½}, ε̄p += Δε̄p, T += σ̄Δε̄p/(ρ c_v).
-fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
+fn update<const D: usize, P: Pressure, S: Strength, V: Viscosity, T: PointState>(
     material: &ElasticPlastic,
     pressure_law: &P,
     strength: &S,
     step: &ConstitutiveStep,
+    viscosity: &V,
     p: &mut Particles<D>,
     points: &mut [T],
 ) {
+    let (c0, length) = (step.sound_speed0, step.smoothing_length);
     let dt = step.dt;
     let rho0 = step.density0;
     let shear = material.elastic.shear_modulus();
@@ -483,7 +513,12 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
             let rate = equivalent_strain_rate(&d);
             let ret = strength.return_map(&trial, shear, point.plastic_strain(), rate, temperature);
             let mut sigma_new = ret.deviator - Tensor3::identity() * pressure;
-            *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
+            // Artificial pressure on the force-driving stress only (numerics.md §10.2).
+            let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
+            *energy += dt * j_half / rho0
+                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                    .component_mul(&d)
+                    .sum();
             // Plastic work per unit mass at the end-of-step flow stress: σ̄ Δε̄p / ρ.
             let flow = (1.5 * ret.deviator.component_mul(&ret.deviator).sum()).sqrt();
             point.heat(flow * ret.plastic_strain_increment * j / rho0, thermal);
@@ -509,7 +544,7 @@ fn update<const D: usize, P: Pressure, S: Strength, T: PointState>(
             *sigma = sigma_new;
             *jac = j;
             *pk1 = if j != 0.0 && j.is_finite() {
-                project(&(sigma_new * cofactor))
+                project(&((sigma_new - Tensor3::identity() * q) * cofactor))
             } else {
                 Tensor::<D>::from_element(f64::NAN)
             };

@@ -11,7 +11,7 @@ use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
 use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
-    ConstitutiveStep,
+    ConstitutiveStep, NoViscosity,
 };
 use rayon::prelude::*;
 use std::ops::Range;
@@ -85,6 +85,10 @@ pub struct Simulation<const D: usize> {
     prescribed: Vec<PrescribedSet<D>>,
     /// Symmetry ghosts (empty without symmetry planes).
     ghosts: Ghosts<D>,
+    /// Artificial bulk viscosity, if declared.
+    viscosity: Option<crate::model::BulkViscosity>,
+    /// XSPH transport velocities, if declared.
+    xsph: Option<Xsph<D>>,
     /// Each body's kernel (to rebuild gradients when particles fail).
     kernels: Vec<tlsph_kernels::AnyKernel>,
     /// Failed particles, out of every sum (empty unless a failure model is declared).
@@ -248,6 +252,33 @@ impl<const D: usize> Simulation<D> {
                 message: "failure models cannot be combined with symmetry planes yet (a failed particle's ghost would keep it in the sums)".into(),
             });
         }
+        if let Some(v) = model.effects.bulk_viscosity {
+            let ok = [v.quadratic, v.linear]
+                .iter()
+                .all(|c| c.is_finite() && *c >= 0.0);
+            if !ok || config.stress_update == StressUpdate::GreenLagrange {
+                return Err(SetupError::InvalidConfig {
+                    field: "bulk_viscosity",
+                    message: "coefficients must be finite and ≥ 0, and the viscosity needs stress_update = \"jaumann-rate\"".into(),
+                });
+            }
+        }
+        let xsph = match model.effects.xsph {
+            None => None,
+            Some(epsilon)
+                if epsilon.is_finite() && (0.0..=1.0).contains(&epsilon) && epsilon > 0.0 =>
+            {
+                Some(Xsph::new(
+                    epsilon, &bonds, &particles, &kernels, &bodies, n_real,
+                ))
+            }
+            Some(epsilon) => {
+                return Err(SetupError::InvalidConfig {
+                    field: "xsph",
+                    message: format!("epsilon must be in (0, 1], got {epsilon}"),
+                })
+            }
+        };
         let removed = if any_failure {
             vec![false; particles.len()]
         } else {
@@ -260,6 +291,8 @@ impl<const D: usize> Simulation<D> {
             chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
             effects,
             ghosts,
+            viscosity: model.effects.bulk_viscosity,
+            xsph,
             kernels,
             removed,
             failed_count: 0,
@@ -286,35 +319,51 @@ impl<const D: usize> Simulation<D> {
     pub fn step(&mut self) -> Result<StepReport, StepError> {
         let dt = self.next_dt;
         if self.steps_done > 0 {
-            // Drift: u^n = u^{n−1} + Δt^n v^{n−½} (R 5.67).
+            // Drift: u^n = u^{n−1} + Δt^n v^{n−½} (R 5.67), with the XSPH velocity if declared.
+            let transport = match &self.xsph {
+                Some(x) => &x.velocity,
+                None => &self.particles.velocities,
+            };
             self.particles
                 .displacements
                 .par_iter_mut()
-                .zip(self.particles.velocities.par_iter())
+                .zip(transport.par_iter())
                 .for_each(|(u, v)| *u += v * dt);
             self.time += dt;
         }
         let step = self.steps_done;
         self.ghosts.refresh_kinematics(&mut self.particles);
-        gather_kinematics(&self.bonds, &mut self.particles);
+        gather_kinematics(
+            &self.bonds,
+            &mut self.particles,
+            self.xsph.as_ref().map(|x| &x.velocity[..]),
+        );
         for (b, info) in self.bodies.iter().enumerate() {
             let constitutive = ConstitutiveStep {
                 range: info.range.clone(),
                 density0: info.density0,
                 dt,
+                smoothing_length: info.smoothing_length,
+                sound_speed0: info.sound_speed0,
             };
+            let viscosity = self.viscosity;
             let particles = &mut self.particles;
             match (&self.materials[info.material], self.config.stress_update) {
-                (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => {
-                    update_jaumann_rate(m, &constitutive, particles)
-                }
+                (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => match viscosity {
+                    None => update_jaumann_rate(m, &constitutive, &NoViscosity, particles),
+                    Some(v) => update_jaumann_rate(m, &constitutive, &v, particles),
+                },
                 (MaterialModel::LinearElastic(m), StressUpdate::GreenLagrange) => {
                     update_green_lagrange(m, &constitutive, particles)
                 }
                 // Rejected at setup for the Green–Lagrange path.
-                (MaterialModel::ElasticPlastic(m), _) => {
-                    update_elastic_plastic(m, &constitutive, particles, &mut self.plastic[b])
-                }
+                (MaterialModel::ElasticPlastic(m), _) => update_elastic_plastic(
+                    m,
+                    &constitutive,
+                    viscosity,
+                    particles,
+                    &mut self.plastic[b],
+                ),
             }
         }
         self.ghosts.refresh_stress(&mut self.particles);
@@ -356,6 +405,14 @@ impl<const D: usize> Simulation<D> {
             }
         }
         self.impose_velocities();
+        if let Some(xsph) = &mut self.xsph {
+            xsph.update(
+                &self.bonds,
+                &self.particles.velocities,
+                self.ghosts.first_or(self.particles.len()),
+            );
+            self.ghosts.mirror(&mut xsph.velocity);
+        }
         self.next_dt = next_dt;
         self.steps_done += 1;
         self.check_finite(step)?;
@@ -810,6 +867,17 @@ impl<const D: usize> Ghosts<D> {
         }
     }
 
+    /// Mirrors a per-particle vector field (e.g. XSPH velocities) from the parents.
+    fn mirror(&self, field: &mut [Vector<D>]) {
+        if self.parent.is_empty() {
+            return;
+        }
+        let (real, ghost) = field.split_at_mut(self.first);
+        ghost.par_iter_mut().enumerate().for_each(|(g, x)| {
+            *x = real[self.parent[g]].component_mul(&self.signs[g]);
+        });
+    }
+
     /// Mirrors displacements and velocities from the parents (gather per ghost).
     fn refresh_kinematics(&self, p: &mut Particles<D>) {
         if self.parent.is_empty() {
@@ -845,6 +913,72 @@ impl<const D: usize> Ghosts<D> {
                 *pk1 = real_p[parent].map_with_location(|k, l, x| x * signs[k] * signs[l]);
                 let sign = |k: usize| if k < D { signs[k] } else { 1.0 };
                 *sigma = real_s[parent].map_with_location(|k, l, x| x * sign(k) * sign(l));
+            });
+    }
+}
+
+/// XSPH (numerics.md §10.4, TL variant): v̂_I = v_I + ε Σ_J V0_J (v_J − v_I) W̃_IJ with the
+/// Shepard-normalised reference kernel W̃_IJ = W0_IJ / S_I. Particles drift with v̂ and Ḟ is
+/// built from v̂, so u stays the time integral of the velocity that F sees.
+#[derive(Debug, Clone)]
+struct Xsph<const D: usize> {
+    epsilon: f64,
+    /// Per bond: V0_J W0_IJ / S_I.
+    weights: Vec<f64>,
+    /// v̂ per particle (ghosts mirrored).
+    velocity: Vec<Vector<D>>,
+}
+
+impl<const D: usize> Xsph<D> {
+    fn new(
+        epsilon: f64,
+        bonds: &Bonds<D>,
+        particles: &Particles<D>,
+        kernels: &[tlsph_kernels::AnyKernel],
+        bodies: &[BodyInfo],
+        n_real: usize,
+    ) -> Self {
+        let x = &particles.positions0;
+        let v0 = &particles.volumes0;
+        let mut weights = vec![0.0; bonds.n_bonds()];
+        for (b, info) in bodies.iter().enumerate() {
+            let kernel = kernels[b];
+            for i in info.range.clone() {
+                let r = bonds.range(i);
+                let shepard = v0[i] * kernel.value(0.0)
+                    + bonds.neighbours[r.clone()]
+                        .iter()
+                        .map(|&j| v0[j as usize] * kernel.value((x[i] - x[j as usize]).norm()))
+                        .sum::<f64>();
+                for k in r {
+                    let j = bonds.neighbours[k] as usize;
+                    weights[k] = v0[j] * kernel.value((x[i] - x[j]).norm()) / shepard;
+                }
+            }
+        }
+        let _ = n_real;
+        Self {
+            epsilon,
+            weights,
+            velocity: particles.velocities.clone(),
+        }
+    }
+
+    /// v̂ of the real particles from the current velocities (gather per particle).
+    fn update(&mut self, bonds: &Bonds<D>, velocities: &[Vector<D>], n_real: usize) {
+        let (epsilon, weights) = (self.epsilon, &self.weights);
+        self.velocity[..n_real]
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .for_each(|(i, vhat)| {
+                let vi = velocities[i];
+                let mut sum = Vector::<D>::zeros();
+                let r = bonds.range(i);
+                for (&j, w) in bonds.neighbours[r.clone()].iter().zip(&weights[r]) {
+                    sum += (velocities[j as usize] - vi) * *w;
+                }
+                *vhat = vi + sum * epsilon;
             });
     }
 }

@@ -7,17 +7,25 @@ use crate::particles::Particles;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_materials::LinearElastic;
-use tlsph_math::{embed_with_identity, embed_with_zeros, outer, project, sym, Tensor, Tensor3};
+use tlsph_math::{
+    embed_with_identity, embed_with_zeros, outer, project, sym, Tensor, Tensor3, Vector,
+};
 
 /// Minimum particles per rayon task: below this, splitting costs more than it saves.
 pub(crate) const MIN_PARTICLES_PER_TASK: usize = 256;
 
 /// F^n = I + Σ_J V0_J (u_J − u_I) ⊗ G̃_IJ and Ḟ^{n−½} = Σ_J V0_J (v_J − v_I) ⊗ G̃_IJ
 /// (R 4.7–4.8, 4.24; numerics.md §4.2–4.3), gathered per particle.
-pub(crate) fn gather_kinematics<const D: usize>(bonds: &Bonds<D>, p: &mut Particles<D>) {
+///
+/// `transport` replaces the particle velocities in Ḟ when XSPH is declared (numerics.md §10.4).
+pub(crate) fn gather_kinematics<const D: usize>(
+    bonds: &Bonds<D>,
+    p: &mut Particles<D>,
+    transport: Option<&[Vector<D>]>,
+) {
     let u = &p.displacements[..];
     // Same length as `u`, so the bounds check on u[j] also covers v[j].
-    let v = &p.velocities[..u.len()];
+    let v = &transport.unwrap_or(&p.velocities)[..u.len()];
     p.deformation_gradient
         .par_iter_mut()
         .zip(p.deformation_rate.par_iter_mut())
@@ -132,6 +140,40 @@ pub(crate) struct ConstitutiveStep {
     pub density0: f64,
     /// Δt^n: time from the previous stress state to this one (0 on the first step).
     pub dt: f64,
+    /// Smoothing length h of the body (length scale ℓ of the bulk viscosity) \[m\].
+    pub smoothing_length: f64,
+    /// Sound speed at the reference density \[m/s\].
+    pub sound_speed0: f64,
+}
+
+/// Artificial pressure added to the force-driving stress (numerics.md §10.2).
+pub(crate) trait Viscosity: Sync {
+    /// q for tr D, density ρ, sound speed c and length ℓ; 0 when not compressing.
+    fn pressure(&self, trace_d: f64, density: f64, sound_speed: f64, length: f64) -> f64;
+}
+
+/// No artificial viscosity: compiles to nothing.
+pub(crate) struct NoViscosity;
+
+impl Viscosity for NoViscosity {
+    #[inline(always)]
+    fn pressure(&self, _: f64, _: f64, _: f64, _: f64) -> f64 {
+        0.0
+    }
+}
+
+impl Viscosity for crate::model::BulkViscosity {
+    #[inline]
+    fn pressure(&self, trace_d: f64, density: f64, sound_speed: f64, length: f64) -> f64 {
+        if trace_d < 0.0 {
+            density
+                * length
+                * (self.quadratic * length * trace_d * trace_d
+                    - self.linear * sound_speed * trace_d)
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Cauchy stress with the Jaumann rate (Algorithms 2–3, R 5.26–5.32), for one body.
@@ -139,11 +181,14 @@ pub(crate) struct ConstitutiveStep {
 /// Rates are evaluated at n−½ with F^{n−½} = F^n − ½Δt Ḟ (exact because F is linear in u and
 /// u^{n−½} = u^n − ½Δt v^{n−½}, R 5.2): L = Ḟ F^{−1}, D = sym L, W = skew L. Internal energy:
 /// Δe = Δt σ^{n−½}:D / ρ^{n−½} with σ^{n−½} = ½(σ^{n−1} + σ^n) (R 4.12, 4.28).
-pub(crate) fn update_jaumann_rate<const D: usize>(
+pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity>(
     material: &LinearElastic,
     step: &ConstitutiveStep,
+    viscosity: &V,
     p: &mut Particles<D>,
 ) {
+    let c0 = step.sound_speed0;
+    let length = step.smoothing_length;
     let dt = step.dt;
     let rho0 = step.density0;
     let r = step.range.clone();
@@ -161,14 +206,20 @@ pub(crate) fn update_jaumann_rate<const D: usize>(
             let f_dot = embed_with_zeros(&f_dot_all[k]);
             let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
             let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
-            *energy += dt * j_half / rho0 * 0.5 * (*sigma + sigma_new).component_mul(&d).sum();
-            *sigma = sigma_new;
             let (cofactor, j) = cofactor_and_determinant(&f);
+            // Artificial pressure on the force-driving stress only (numerics.md §10.2).
+            let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
+            let driving = sigma_new - Tensor3::identity() * q;
+            *energy += dt * j_half / rho0
+                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                    .component_mul(&d)
+                    .sum();
+            *sigma = sigma_new;
             *jac = j;
             // P = J σ F⁻ᵀ = σ cof F (R 5.32, numerics.md §4.4); a singular or non-finite F
             // leaves NaN for the check.
             *pk1 = if j != 0.0 && j.is_finite() {
-                project(&(sigma_new * cofactor))
+                project(&(driving * cofactor))
             } else {
                 Tensor::<D>::from_element(f64::NAN)
             };
