@@ -509,6 +509,23 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             ));
         }
     }
+    if let Some(v) = &file.artificial_viscosity {
+        let coefficient = |x: &Spanned<f64>, key: &str| {
+            let value = *x.get_ref();
+            if value.is_finite() && value >= 0.0 {
+                Ok(value)
+            } else {
+                Err(ctx.error(
+                    &x.span(),
+                    key,
+                    format!("must be a finite number ≥ 0, got {value}"),
+                ))
+            }
+        };
+        let alpha = coefficient(&v.alpha, "artificial_viscosity.alpha")?;
+        let beta = coefficient(&v.beta, "artificial_viscosity.beta")?;
+        effects.pairwise_viscosity = Some((alpha, beta));
+    }
     if let Some(x) = &file.xsph {
         let epsilon = *x.epsilon.get_ref();
         if !(epsilon.is_finite() && epsilon > 0.0 && epsilon <= 1.0) {

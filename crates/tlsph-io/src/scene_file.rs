@@ -30,6 +30,16 @@ pub(crate) struct SceneFile {
     pub bulk_viscosity: Option<BulkViscosityTable>,
     #[serde(default)]
     pub xsph: Option<XsphTable>,
+    #[serde(default)]
+    pub artificial_viscosity: Option<ArtificialViscosityTable>,
+}
+
+/// `[artificial_viscosity]`: Monaghan's pairwise viscosity.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ArtificialViscosityTable {
+    pub alpha: Spanned<f64>,
+    pub beta: Spanned<f64>,
 }
 
 /// `[bulk_viscosity]`: artificial bulk viscosity coefficients.

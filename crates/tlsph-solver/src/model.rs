@@ -271,6 +271,9 @@ pub struct EffectsDescription<const D: usize> {
     pub symmetry_planes: Vec<SymmetryPlane>,
     /// Artificial bulk viscosity.
     pub bulk_viscosity: Option<BulkViscosity>,
+    /// Monaghan pairwise artificial viscosity (α, β) for the reference neighbour pairs
+    /// (numerics.md §10.1).
+    pub pairwise_viscosity: Option<(f64, f64)>,
     /// XSPH coefficient ε (numerics.md §10.4, TL variant): particles move, and Ḟ is built,
     /// with v̂_I = v_I + ε Σ_J V0_J (v_J − v_I) W̃_IJ.
     pub xsph: Option<f64>,

@@ -3,7 +3,7 @@
 
 use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
 use crate::diagnostics::Diagnostics;
-use crate::effects::{BookedEffect, EffectContext, HourglassControl, RigidWall};
+use crate::effects::{BookedEffect, EffectContext, HourglassControl, MonaghanViscosity, RigidWall};
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
@@ -561,6 +561,7 @@ impl<const D: usize> Simulation<D> {
             let ctx = EffectContext {
                 particles: &self.particles,
                 bonds: &self.bonds,
+                kick,
             };
             booked.effect.accelerations(&ctx, &mut self.effect_scratch);
             let p = &mut self.particles;
@@ -1114,6 +1115,30 @@ fn build_effects<const D: usize>(
                 &h,
                 &c0,
                 &dx,
+            )),
+            energy: 0.0,
+        });
+    }
+    if let Some((alpha, beta)) = model.effects.pairwise_viscosity {
+        if !(alpha.is_finite() && beta.is_finite() && alpha >= 0.0 && beta >= 0.0) {
+            return Err(SetupError::InvalidConfig {
+                field: "artificial_viscosity",
+                message: format!("alpha and beta must be finite and ≥ 0, got {alpha}, {beta}"),
+            });
+        }
+        let kernels = bodies
+            .iter()
+            .map(|b| model.config.kernel.build(D, b.smoothing_length))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| SetupError::Kernel(e.to_string()))?;
+        effects.push(BookedEffect {
+            effect: Box::new(MonaghanViscosity::new(
+                alpha,
+                beta,
+                kernels,
+                (0..n).map(|i| body_of(i) as u32).collect(),
+                bodies.iter().map(|b| b.density0).collect(),
+                bodies.iter().map(|b| b.sound_speed0).collect(),
             )),
             energy: 0.0,
         });

@@ -4,9 +4,11 @@
 //! not declare is not in the list: it allocates nothing and costs nothing.
 
 mod hourglass;
+mod monaghan_viscosity;
 mod rigid_wall;
 
 pub use hourglass::HourglassControl;
+pub use monaghan_viscosity::MonaghanViscosity;
 pub use rigid_wall::RigidWall;
 
 use crate::bonds::Bonds;
@@ -19,6 +21,8 @@ pub(crate) struct EffectContext<'a, const D: usize> {
     pub particles: &'a Particles<D>,
     /// Reference bonds.
     pub bonds: &'a Bonds<D>,
+    /// This step's kick ½(Δt^n + Δt^{n+1}): velocities hold v^{n−½} + kick·a (internal forces).
+    pub kick: f64,
 }
 
 /// An optional force contribution.
