@@ -263,6 +263,12 @@ impl<const D: usize> Simulation<D> {
                 });
             }
         }
+        if any_failure && model.effects.xsph.is_some() {
+            return Err(SetupError::InvalidConfig {
+                field: "xsph",
+                message: "XSPH cannot be combined with a failure model yet (its averages would keep failed particles in)".into(),
+            });
+        }
         let xsph = match model.effects.xsph {
             None => None,
             Some(epsilon)
