@@ -206,6 +206,20 @@ impl Context<'_> {
         }
     }
 
+    /// A finite value ≥ 0, or an error at its span.
+    fn non_negative(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let v = *value.get_ref();
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(
+                &value.span(),
+                field,
+                format!("must be a finite number ≥ 0, got {v}"),
+            ))
+        }
+    }
+
     pub(crate) fn positive(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
         let v = *value.get_ref();
         if v.is_finite() && v > 0.0 {
@@ -485,21 +499,9 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             .push(SymmetryPlane { axis, position });
     }
     if let Some(v) = &file.bulk_viscosity {
-        let non_negative = |x: &Spanned<f64>, key: &str| {
-            let value = *x.get_ref();
-            if value.is_finite() && value >= 0.0 {
-                Ok(value)
-            } else {
-                Err(ctx.error(
-                    &x.span(),
-                    key,
-                    format!("must be a finite number ≥ 0, got {value}"),
-                ))
-            }
-        };
         effects.bulk_viscosity = Some(BulkViscosity {
-            quadratic: non_negative(&v.quadratic, "bulk_viscosity.quadratic")?,
-            linear: non_negative(&v.linear, "bulk_viscosity.linear")?,
+            quadratic: ctx.non_negative(&v.quadratic, "bulk_viscosity.quadratic")?,
+            linear: ctx.non_negative(&v.linear, "bulk_viscosity.linear")?,
         });
         if stress_update == StressUpdate::GreenLagrange {
             return Err(ctx.error(
@@ -510,20 +512,8 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
     }
     if let Some(v) = &file.artificial_viscosity {
-        let coefficient = |x: &Spanned<f64>, key: &str| {
-            let value = *x.get_ref();
-            if value.is_finite() && value >= 0.0 {
-                Ok(value)
-            } else {
-                Err(ctx.error(
-                    &x.span(),
-                    key,
-                    format!("must be a finite number ≥ 0, got {value}"),
-                ))
-            }
-        };
-        let alpha = coefficient(&v.alpha, "artificial_viscosity.alpha")?;
-        let beta = coefficient(&v.beta, "artificial_viscosity.beta")?;
+        let alpha = ctx.non_negative(&v.alpha, "artificial_viscosity.alpha")?;
+        let beta = ctx.non_negative(&v.beta, "artificial_viscosity.beta")?;
         effects.pairwise_viscosity = Some((alpha, beta));
     }
     if let Some(x) = &file.xsph {
