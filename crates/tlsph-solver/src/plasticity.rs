@@ -25,7 +25,7 @@ pub(crate) enum PlasticState {
     /// The body's material has no plastic state.
     None,
     /// Effective plastic strain ε̄p.
-    Strain(Vec<f64>),
+    Strain(Vec<[f64; 1]>),
     /// [ε̄p, temperature T].
     StrainTemperature(Vec<[f64; 2]>),
     /// [ε̄p, damage D, status] (status: 0 intact, 1 failed this step, 2 failed and removed).
@@ -42,7 +42,7 @@ impl PlasticState {
                 (Some(t), None) => {
                     PlasticState::StrainTemperature(vec![[0.0, t.room_temperature]; n])
                 }
-                (None, None) => PlasticState::Strain(vec![0.0; n]),
+                (None, None) => PlasticState::Strain(vec![[0.0]; n]),
                 (None, Some(_)) => PlasticState::StrainDamage(vec![[0.0; 3]; n]),
                 (Some(t), Some(_)) => {
                     PlasticState::StrainTemperatureDamage(vec![
@@ -59,7 +59,7 @@ impl PlasticState {
     pub fn plastic_strain(&self, k: usize) -> Option<f64> {
         match self {
             PlasticState::None => None,
-            PlasticState::Strain(v) => Some(v[k]),
+            PlasticState::Strain(v) => Some(v[k][0]),
             PlasticState::StrainTemperature(v) => Some(v[k][0]),
             PlasticState::StrainDamage(v) => Some(v[k][0]),
             PlasticState::StrainTemperatureDamage(v) => Some(v[k][0]),
@@ -129,31 +129,17 @@ trait PointState: Send + Sync {
     fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>);
 }
 
-impl PointState for f64 {
-    #[inline]
-    fn plastic_strain(&self) -> f64 {
-        *self
-    }
-    #[inline]
-    fn temperature(&self) -> Option<f64> {
-        None
-    }
-    #[inline]
-    fn add_plastic_strain(&mut self, increment: f64) {
-        *self += increment;
-    }
-    #[inline]
-    fn heat(&mut self, _: f64, _: Option<&Thermal>) {}
-}
-
-impl PointState for [f64; 2] {
+/// The packed per-particle state [ε̄p, (T), (D, status)]: N = 1 + (heating) + 2·(failure), so
+/// N says which parts exist and every test on it below is resolved at compile time.
+impl<const N: usize> PointState for [f64; N] {
+    const HAS_FAILURE: bool = N >= 3;
     #[inline]
     fn plastic_strain(&self) -> f64 {
         self[0]
     }
     #[inline]
     fn temperature(&self) -> Option<f64> {
-        Some(self[1])
+        N.is_multiple_of(2).then(|| self[1])
     }
     #[inline]
     fn add_plastic_strain(&mut self, increment: f64) {
@@ -161,76 +147,34 @@ impl PointState for [f64; 2] {
     }
     #[inline]
     fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>) {
-        if let Some(t) = thermal {
+        if let (true, Some(t)) = (N.is_multiple_of(2), thermal) {
             // Adiabatic: all plastic work becomes heat (numerics.md §8.5).
             self[1] += work_per_mass / t.specific_heat;
         }
     }
-}
-
-impl PointState for [f64; 3] {
-    const HAS_FAILURE: bool = true;
-    #[inline]
-    fn plastic_strain(&self) -> f64 {
-        self[0]
-    }
-    #[inline]
-    fn temperature(&self) -> Option<f64> {
-        None
-    }
-    #[inline]
-    fn add_plastic_strain(&mut self, increment: f64) {
-        self[0] += increment;
-    }
-    #[inline]
-    fn heat(&mut self, _: f64, _: Option<&Thermal>) {}
     #[inline]
     fn status(&self) -> f64 {
-        self[2]
-    }
-    #[inline]
-    fn add_damage(&mut self, increment: f64) -> f64 {
-        self[1] += increment;
-        self[1]
-    }
-    #[inline]
-    fn fail(&mut self) {
-        self[2] = 1.0;
-    }
-}
-
-impl PointState for [f64; 4] {
-    const HAS_FAILURE: bool = true;
-    #[inline]
-    fn plastic_strain(&self) -> f64 {
-        self[0]
-    }
-    #[inline]
-    fn temperature(&self) -> Option<f64> {
-        Some(self[1])
-    }
-    #[inline]
-    fn add_plastic_strain(&mut self, increment: f64) {
-        self[0] += increment;
-    }
-    #[inline]
-    fn heat(&mut self, work_per_mass: f64, thermal: Option<&Thermal>) {
-        if let Some(t) = thermal {
-            self[1] += work_per_mass / t.specific_heat;
+        if N >= 3 {
+            self[N.saturating_sub(1)]
+        } else {
+            0.0
         }
     }
     #[inline]
-    fn status(&self) -> f64 {
-        self[3]
-    }
-    #[inline]
     fn add_damage(&mut self, increment: f64) -> f64 {
-        self[2] += increment;
-        self[2]
+        if N >= 3 {
+            let d = N.saturating_sub(2);
+            self[d] += increment;
+            self[d]
+        } else {
+            0.0
+        }
     }
     #[inline]
     fn fail(&mut self) {
-        self[3] = 1.0;
+        if N >= 3 {
+            self[N.saturating_sub(1)] = 1.0;
+        }
     }
 }
 
@@ -433,7 +377,7 @@ fn with_state<const D: usize, P: Pressure, S: Strength, V: Viscosity>(
 ) {
     match state {
         PlasticState::Strain(v) => {
-            update::<D, P, S, V, f64>(material, pressure, strength, step, viscosity, p, v)
+            update::<D, P, S, V, [f64; 1]>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainTemperature(v) => {
             update::<D, P, S, V, [f64; 2]>(material, pressure, strength, step, viscosity, p, v)
