@@ -290,7 +290,7 @@ impl<const D: usize> Simulation<D> {
         } else {
             Vec::new()
         };
-        let effects = build_effects(&model, &bodies, &particles, &bonds, n_real)?;
+        let effects = build_effects(&model, &bodies, &kernels, &particles, &bonds, n_real)?;
         let n_effect = if effects.is_empty() { 0 } else { n_real };
         let mut sim = Self {
             effect_scratch: vec![Vector::zeros(); n_effect],
@@ -1079,6 +1079,7 @@ const CHUNK: usize = 4096;
 fn build_effects<const D: usize>(
     model: &Model<D>,
     bodies: &[BodyInfo],
+    kernels: &[tlsph_kernels::AnyKernel],
     particles: &Particles<D>,
     bonds: &Bonds<D>,
     n_real: usize,
@@ -1132,16 +1133,11 @@ fn build_effects<const D: usize>(
                 message: format!("alpha and beta must be finite and ≥ 0, got {alpha}, {beta}"),
             });
         }
-        let kernels = bodies
-            .iter()
-            .map(|b| model.config.kernel.build(D, b.smoothing_length))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| SetupError::Kernel(e.to_string()))?;
         effects.push(BookedEffect {
             effect: Box::new(MonaghanViscosity::new(
                 alpha,
                 beta,
-                kernels,
+                kernels.to_vec(),
                 (0..n).map(|i| body_of(i) as u32).collect(),
                 bodies.iter().map(|b| b.density0).collect(),
                 bodies.iter().map(|b| b.sound_speed0).collect(),
@@ -1156,11 +1152,6 @@ fn build_effects<const D: usize>(
                 message: format!("coefficient must be > 0, got {alpha}"),
             });
         }
-        let kernels: Vec<_> = bodies
-            .iter()
-            .map(|b| model.config.kernel.build(D, b.smoothing_length))
-            .collect::<Result<_, _>>()
-            .map_err(|e| SetupError::Kernel(e.to_string()))?;
         let youngs: Vec<f64> = bodies
             .iter()
             .map(|b| match &model.materials[b.material].model {
