@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription, Formulation,
-    MaterialDescription, MaterialModel, Model, ParticleField, SimulationConfig, StressUpdate,
-    SymmetryPlane, WallDescription,
+    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
+    Formulation, MaterialDescription, MaterialModel, Model, ParticleField, SimulationConfig,
+    StressUpdate, SymmetryPlane, WallDescription,
 };
 use toml::Spanned;
 
@@ -268,11 +268,12 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
     let formulation = match sim.formulation.get_ref().as_str() {
         "total-lagrangian" => Formulation::TotalLagrangian,
         "total-lagrangian-corrected" => Formulation::TotalLagrangianCorrected,
+        "updated-lagrangian" => Formulation::UpdatedLagrangian,
         other => {
             return Err(ctx.error(
                 &sim.formulation.span(),
                 "simulation.formulation",
-                format!("unknown formulation `{other}`; use `total-lagrangian` or `total-lagrangian-corrected`"),
+                format!("unknown formulation `{other}`; use `total-lagrangian`, `total-lagrangian-corrected` or `updated-lagrangian`"),
             ))
         }
     };
@@ -527,7 +528,41 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
         effects.xsph = Some(epsilon);
     }
+    let updated_lagrangian = formulation == Formulation::UpdatedLagrangian;
+    if let Some(a) = &file.artificial_stress {
+        if !updated_lagrangian {
+            return Err(ctx.error(
+                &a.span(),
+                "artificial_stress",
+                "needs formulation = \"updated-lagrangian\" (TLSPH has no tensile instability to correct)".into(),
+            ));
+        }
+        let a = a.get_ref();
+        let or_default = |v: &Option<Spanned<f64>>, field: &str, default: f64| {
+            v.as_ref().map_or(Ok(default), |v| ctx.positive(v, field))
+        };
+        effects.artificial_stress = Some(ArtificialStress {
+            epsilon: or_default(&a.epsilon, "artificial_stress.epsilon", 0.3)?,
+            exponent: or_default(&a.exponent, "artificial_stress.exponent", 6.0)?,
+        });
+    }
+    if updated_lagrangian {
+        if let Some(plane) = file.symmetry_plane.first() {
+            return Err(ctx.error(
+                &plane.axis.span(),
+                "symmetry_plane",
+                "not available with formulation = \"updated-lagrangian\" (mirror particles are built from the reference configuration); model the full body".into(),
+            ));
+        }
+    }
     if let Some(h) = &file.hourglass_control {
+        if updated_lagrangian {
+            return Err(ctx.error(
+                &h.coefficient.span(),
+                "hourglass_control",
+                "not available with formulation = \"updated-lagrangian\" (it corrects the reference-bond F of TLSPH); use [artificial_viscosity]".into(),
+            ));
+        }
         effects.hourglass_control =
             Some(ctx.positive(&h.coefficient, "hourglass_control.coefficient")?);
     }

@@ -32,6 +32,16 @@ pub(crate) struct SceneFile {
     pub xsph: Option<XsphTable>,
     #[serde(default)]
     pub artificial_viscosity: Option<ArtificialViscosityTable>,
+    #[serde(default)]
+    pub artificial_stress: Option<Spanned<ArtificialStressTable>>,
+}
+
+/// `[artificial_stress]`: Monaghan/Gray artificial stress (updated-Lagrangian only).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ArtificialStressTable {
+    pub epsilon: Option<Spanned<f64>>,
+    pub exponent: Option<Spanned<f64>>,
 }
 
 /// `[artificial_viscosity]`: Monaghan's pairwise viscosity.

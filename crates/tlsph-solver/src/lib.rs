@@ -20,15 +20,18 @@ mod particles;
 mod plasticity;
 mod simulation;
 mod step;
+mod updated_lagrangian;
 
 pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription, ElasticPlastic,
-    FailureModel, Formulation, MaterialDescription, MaterialModel, Model, PressureModel,
-    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
+    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
+    ElasticPlastic, FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
+    PressureModel, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal,
+    WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;
+pub use updated_lagrangian::{CurrentPairs, SKIN_FRACTION};

@@ -16,6 +16,11 @@ pub enum Formulation {
     /// Shepard quotient-rule gradient × Randles–Libersky correction B_I (Algorithm 3,
     /// numerics.md §6.1–6.2): F is exact for affine displacement fields, boundaries included.
     TotalLagrangianCorrected,
+    /// Conventional ("Eulerian kernel", updated-Lagrangian) SPH: kernel in the current
+    /// configuration, neighbours searched as particles move, continuity density, bodies of the
+    /// same material interacting through the kernel (numerics.md §3). Suffers the tensile
+    /// instability (R ch. 3); offered for comparison and very large deformation.
+    UpdatedLagrangian,
 }
 
 impl Formulation {
@@ -24,6 +29,7 @@ impl Formulation {
         match self {
             Formulation::TotalLagrangian => "total-lagrangian",
             Formulation::TotalLagrangianCorrected => "total-lagrangian-corrected",
+            Formulation::UpdatedLagrangian => "updated-lagrangian",
         }
     }
 }
@@ -277,6 +283,19 @@ pub struct EffectsDescription<const D: usize> {
     /// XSPH coefficient ε (numerics.md §10.4, TL variant): particles move, and Ḟ is built,
     /// with v̂_I = v_I + ε Σ_J V0_J (v_J − v_I) W̃_IJ.
     pub xsph: Option<f64>,
+    /// Monaghan/Gray artificial stress (numerics.md §10.3; updated-Lagrangian only).
+    pub artificial_stress: Option<ArtificialStress>,
+}
+
+/// Monaghan/Gray artificial stress (numerics.md §10.3; F 3.5–3.7): per particle
+/// R_I = −ε Q diag(σ'_k⁺/ρ²) Qᵀ over the tensile principal stresses σ'_k, and the pair term
+/// (R_I + R_J) (W_IJ/W(Δx))ⁿ added inside the momentum bracket.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArtificialStress {
+    /// ε (Gray–Monaghan–Swift 0.3).
+    pub epsilon: f64,
+    /// Exponent n of f_IJ = W_IJ/W(Δx) (Fuller 6).
+    pub exponent: f64,
 }
 
 /// Everything needed to start a simulation.

@@ -3,7 +3,10 @@
 
 use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
 use crate::diagnostics::Diagnostics;
-use crate::effects::{BookedEffect, EffectContext, HourglassControl, MonaghanViscosity, RigidWall};
+use crate::effects::{
+    BookedEffect, EffectContext, HourglassControl, MonaghanArtificialStress, MonaghanViscosity,
+    RigidWall,
+};
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
@@ -13,6 +16,7 @@ use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
     ConstitutiveStep, NoViscosity,
 };
+use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_kernels::Kernel;
@@ -87,8 +91,11 @@ pub struct Simulation<const D: usize> {
     ghosts: Ghosts<D>,
     /// Artificial bulk viscosity, if declared.
     viscosity: Option<crate::model::BulkViscosity>,
-    /// XSPH transport velocities, if declared.
+    /// XSPH transport velocities, if declared (total-Lagrangian variant).
     xsph: Option<Xsph<D>>,
+    /// Current-configuration pairs and state of the updated-Lagrangian formulation (None for
+    /// the total-Lagrangian formulations).
+    updated: Option<UpdatedLagrangian<D>>,
     /// Each body's kernel (to rebuild gradients when particles fail).
     kernels: Vec<tlsph_kernels::AnyKernel>,
     /// Failed particles, out of every sum (empty unless a failure model is declared).
@@ -269,8 +276,18 @@ impl<const D: usize> Simulation<D> {
                 message: "XSPH cannot be combined with a failure model yet (its averages would keep failed particles in)".into(),
             });
         }
+        let updated_lagrangian = config.formulation == Formulation::UpdatedLagrangian;
+        if updated_lagrangian {
+            check_updated_lagrangian_effects(&model)?;
+        } else if model.effects.artificial_stress.is_some() {
+            return Err(SetupError::InvalidConfig {
+                field: "artificial_stress",
+                message: "artificial stress is for formulation = \"updated-lagrangian\" only (TLSPH has no tensile instability to correct)".into(),
+            });
+        }
         let xsph = match model.effects.xsph {
             None => None,
+            Some(_) if updated_lagrangian => None,
             Some(epsilon)
                 if epsilon.is_finite() && (0.0..=1.0).contains(&epsilon) && epsilon > 0.0 =>
             {
@@ -291,6 +308,25 @@ impl<const D: usize> Simulation<D> {
             Vec::new()
         };
         let effects = build_effects(&model, &bodies, &kernels, &particles, &bonds, n_real)?;
+        let updated = updated_lagrangian.then(|| {
+            let body_of = |i: usize| {
+                bodies
+                    .iter()
+                    .position(|b| b.range.contains(&i))
+                    .unwrap_or(0)
+            };
+            let body: Vec<u32> = (0..n_real).map(|i| body_of(i) as u32).collect();
+            let group = body
+                .iter()
+                .map(|&b| bodies[b as usize].material as u32)
+                .collect();
+            let xsph = model
+                .effects
+                .xsph
+                .map(|epsilon| (epsilon, particles.velocities.clone()));
+            let need_values = xsph.is_some() || model.effects.artificial_stress.is_some();
+            UpdatedLagrangian::new(body, group, kernels.clone(), need_values, xsph)
+        });
         let n_effect = if effects.is_empty() { 0 } else { n_real };
         let mut sim = Self {
             effect_scratch: vec![Vector::zeros(); n_effect],
@@ -299,6 +335,7 @@ impl<const D: usize> Simulation<D> {
             ghosts,
             viscosity: model.effects.bulk_viscosity,
             xsph,
+            updated,
             kernels,
             removed,
             failed_count: 0,
@@ -326,9 +363,15 @@ impl<const D: usize> Simulation<D> {
         let dt = self.next_dt;
         if self.steps_done > 0 {
             // Drift: u^n = u^{n−1} + Δt^n v^{n−½} (R 5.67), with the XSPH velocity if declared.
-            let transport = match &self.xsph {
-                Some(x) => &x.velocity,
-                None => &self.particles.velocities,
+            let transport = match (&self.xsph, &self.updated) {
+                (Some(x), _) => &x.velocity,
+                (
+                    None,
+                    Some(UpdatedLagrangian {
+                        xsph: Some((_, v)), ..
+                    }),
+                ) => v,
+                _ => &self.particles.velocities,
             };
             self.particles
                 .displacements
@@ -339,11 +382,21 @@ impl<const D: usize> Simulation<D> {
         }
         let step = self.steps_done;
         self.ghosts.refresh_kinematics(&mut self.particles);
-        gather_kinematics(
-            &self.bonds,
-            &mut self.particles,
-            self.xsph.as_ref().map(|x| &x.velocity[..]),
-        );
+        match &mut self.updated {
+            Some(updated) => {
+                if updated.refresh(&self.particles, &self.removed).is_err() {
+                    // The neighbour search only fails on non-finite positions.
+                    let first = self.particles.displacements.len();
+                    return Err(self.non_finite(step, first.saturating_sub(1)));
+                }
+                updated.gather_kinematics(&mut self.particles, dt);
+            }
+            None => gather_kinematics(
+                &self.bonds,
+                &mut self.particles,
+                self.xsph.as_ref().map(|x| &x.velocity[..]),
+            ),
+        }
         for (b, info) in self.bodies.iter().enumerate() {
             let constitutive = ConstitutiveStep {
                 range: info.range.clone(),
@@ -397,7 +450,13 @@ impl<const D: usize> Simulation<D> {
         // Kick: v^{n+½} = v^{n−½} + ½(Δt^n + Δt^{n+1}) a^n (R 5.64–5.66; Δt^0 = 0 gives the
         // first half step).
         let kick = 0.5 * (dt + next_dt);
-        gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick);
+        match &mut self.updated {
+            Some(updated) => {
+                updated.update_stress_over_density2(&self.particles);
+                updated.gather_accelerations_and_kick(&mut self.particles, kick);
+            }
+            None => gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick),
+        }
         self.apply_effects(kick);
         // Prescribed components: zero their acceleration; their kicked velocity is overwritten
         // by `impose_velocities`, so kicking before zeroing changes nothing.
@@ -418,6 +477,9 @@ impl<const D: usize> Simulation<D> {
                 self.ghosts.first_or(self.particles.len()),
             );
             self.ghosts.mirror(&mut xsph.velocity);
+        }
+        if let Some(updated) = &mut self.updated {
+            updated.update_xsph(&self.particles);
         }
         self.next_dt = next_dt;
         self.steps_done += 1;
@@ -490,6 +552,9 @@ impl<const D: usize> Simulation<D> {
         for &i in &newly {
             self.removed[i] = true;
         }
+        if let Some(updated) = &mut self.updated {
+            updated.mark_stale();
+        }
         self.failed_count += newly.len();
         let bodies = &self.bodies;
         let kernels = &self.kernels;
@@ -548,6 +613,11 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
+    /// Verlet-list rebuilds so far (updated-Lagrangian formulation only).
+    pub fn neighbour_rebuilds(&self) -> Option<u64> {
+        self.updated.as_ref().map(|u| u.rebuilds())
+    }
+
     /// Number of particles that have failed so far.
     pub fn failed_particles(&self) -> usize {
         self.failed_count
@@ -567,6 +637,7 @@ impl<const D: usize> Simulation<D> {
             let ctx = EffectContext {
                 particles: &self.particles,
                 bonds: &self.bonds,
+                pairs: self.updated.as_ref().map(|u| &u.pairs),
                 kick,
             };
             booked.effect.accelerations(&ctx, &mut self.effect_scratch);
@@ -1145,6 +1216,31 @@ fn build_effects<const D: usize>(
             energy: 0.0,
         });
     }
+    if let Some(a) = model.effects.artificial_stress {
+        if !(a.epsilon.is_finite() && a.epsilon > 0.0 && a.exponent.is_finite() && a.exponent > 0.0)
+        {
+            return Err(SetupError::InvalidConfig {
+                field: "artificial_stress",
+                message: format!(
+                    "epsilon and exponent must be finite and > 0, got {}, {}",
+                    a.epsilon, a.exponent
+                ),
+            });
+        }
+        effects.push(BookedEffect {
+            effect: Box::new(MonaghanArtificialStress::new(
+                a.epsilon,
+                a.exponent,
+                (0..n).map(|i| body_of(i) as u32).collect(),
+                bodies
+                    .iter()
+                    .zip(kernels)
+                    .map(|(b, k)| k.value(b.spacing))
+                    .collect(),
+            )),
+            energy: 0.0,
+        });
+    }
     if let Some(alpha) = model.effects.hourglass_control {
         if !(alpha.is_finite() && alpha > 0.0) {
             return Err(SetupError::InvalidConfig {
@@ -1175,6 +1271,30 @@ fn build_effects<const D: usize>(
         });
     }
     Ok(effects)
+}
+
+/// Effects that need the reference bonds or mirror particles, refused for the
+/// updated-Lagrangian formulation with a message saying why.
+fn check_updated_lagrangian_effects<const D: usize>(model: &Model<D>) -> Result<(), SetupError> {
+    let refuse = |field: &'static str, why: &str| {
+        Err(SetupError::InvalidConfig {
+            field,
+            message: format!("not available with formulation = \"updated-lagrangian\": {why}"),
+        })
+    };
+    if model.effects.hourglass_control.is_some() {
+        return refuse(
+            "hourglass_control",
+            "it corrects the reference-bond F of TLSPH; use artificial_viscosity",
+        );
+    }
+    if !model.effects.symmetry_planes.is_empty() {
+        return refuse(
+            "symmetry_plane",
+            "mirror particles are built once from the reference configuration; model the full body",
+        );
+    }
+    Ok(())
 }
 
 /// Index of the first item that satisfies `pred`, searched in parallel by chunks.

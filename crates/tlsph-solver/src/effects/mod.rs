@@ -3,10 +3,12 @@
 //! not constrain, and has its work booked so total energy closes. An effect that a scene does
 //! not declare is not in the list: it allocates nothing and costs nothing.
 
+mod artificial_stress;
 mod hourglass;
 mod monaghan_viscosity;
 mod rigid_wall;
 
+pub use artificial_stress::MonaghanArtificialStress;
 pub use hourglass::HourglassControl;
 pub use monaghan_viscosity::MonaghanViscosity;
 pub use rigid_wall::RigidWall;
@@ -21,6 +23,8 @@ pub(crate) struct EffectContext<'a, const D: usize> {
     pub particles: &'a Particles<D>,
     /// Reference bonds.
     pub bonds: &'a Bonds<D>,
+    /// Current-configuration pairs (updated-Lagrangian formulation only).
+    pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
     /// This step's kick ½(Δt^n + Δt^{n+1}): velocities hold v^{n−½} + kick·a (internal forces).
     pub kick: f64,
 }

@@ -1,6 +1,7 @@
-//! Monaghan's pairwise artificial viscosity for TLSPH (numerics.md §10.1, TL use): evaluated in
-//! the current configuration for the reference neighbour pairs of each body, repulsive on
-//! approach, pairwise antisymmetric (momentum conserving); its work is booked as dissipation.
+//! Monaghan's pairwise artificial viscosity (numerics.md §10.1): for TLSPH evaluated in the
+//! current configuration for the reference neighbour pairs of each body (TL use), for
+//! updated-Lagrangian SPH over the current pairs. Repulsive on approach, pairwise antisymmetric
+//! (momentum conserving); its work is booked as dissipation.
 
 use super::{Effect, EffectContext};
 use rayon::prelude::*;
@@ -54,39 +55,73 @@ impl<const D: usize> Effect<D> for MonaghanViscosity {
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
         let p = ctx.particles;
-        let b = ctx.bonds;
         let n_real = out.len();
         let this = &*self;
+        let position = |j: usize| p.positions0[j] + p.displacements[j];
+        match ctx.pairs {
+            // Updated-Lagrangian: the current pairs with their (pair-averaged) gradients.
+            Some(pairs) => this.gather(ctx, out, |i| {
+                let r = pairs.range(i);
+                pairs.neighbours[r.clone()]
+                    .iter()
+                    .zip(&pairs.gradient[r])
+                    .map(|(&j, g)| (j as usize, *g))
+            }),
+            // TLSPH: the reference neighbours of the same body, kernel at x^n.
+            None => this.gather(ctx, out, |i| {
+                let kernel = &this.kernels[this.body[i] as usize];
+                let xi = position(i);
+                ctx.bonds
+                    .neighbours_of(i)
+                    .iter()
+                    .map(|&j| j as usize)
+                    .filter(move |&j| j < n_real)
+                    .map(move |j| (j, kernel.gradient(&(xi - position(j)))))
+            }),
+        }
+    }
+}
+
+impl MonaghanViscosity {
+    /// a_I = −Σ_J m_J Π_IJ ∇_I W_IJ over the pairs `pairs_of(I)` = (J, ∇_I W_IJ), with v^n,
+    /// ρ = ρ0/J and c = c0 sqrt(J) of each particle and h̄ = ½(h_I + h_J).
+    fn gather<const D: usize, I: Iterator<Item = (usize, Vector<D>)>>(
+        &self,
+        ctx: &EffectContext<'_, D>,
+        out: &mut [Vector<D>],
+        pairs_of: impl Fn(usize) -> I + Sync,
+    ) {
+        let p = ctx.particles;
+        // Velocity at t^n: undo half of this step's kick.
+        let velocity = |j: usize| p.velocities[j] - p.accelerations[j] * (0.5 * ctx.kick);
+        let state = |j: usize| {
+            let body = self.body[j] as usize;
+            (
+                self.density0[body] / p.jacobian[j],
+                self.sound_speed0[body] * p.jacobian[j].max(0.0).sqrt(),
+                self.kernels[body].smoothing_length(),
+            )
+        };
         out.par_iter_mut()
             .enumerate()
             .with_min_len(256)
             .for_each(|(i, a)| {
-                let body = this.body[i] as usize;
-                let kernel = &this.kernels[body];
-                let h = kernel.smoothing_length();
                 let xi = p.positions0[i] + p.displacements[i];
-                // Velocity at t^n: undo half of this step's kick.
-                let vi = p.velocities[i] - p.accelerations[i] * (0.5 * ctx.kick);
-                let rho_i = this.density0[body] / p.jacobian[i];
-                let c_i = this.sound_speed0[body] * p.jacobian[i].max(0.0).sqrt();
+                let vi = velocity(i);
+                let (rho_i, c_i, h_i) = state(i);
                 let mut acc = Vector::<D>::zeros();
-                for &j in b.neighbours_of(i) {
-                    let j = j as usize;
-                    if j >= n_real {
-                        continue;
-                    }
+                for (j, gradient) in pairs_of(i) {
                     let x_ij = xi - (p.positions0[j] + p.displacements[j]);
-                    let v_ij = vi - (p.velocities[j] - p.accelerations[j] * (0.5 * ctx.kick));
-                    let approach = v_ij.dot(&x_ij);
+                    let approach = (vi - velocity(j)).dot(&x_ij);
                     if approach >= 0.0 {
                         continue;
                     }
+                    let (rho_j, c_j, h_j) = state(j);
+                    let h = 0.5 * (h_i + h_j);
                     let mu = h * approach / (x_ij.norm_squared() + 0.01 * h * h);
-                    let rho_j = this.density0[body] / p.jacobian[j];
-                    let c_j = this.sound_speed0[body] * p.jacobian[j].max(0.0).sqrt();
-                    let pi = (-this.alpha * 0.5 * (c_i + c_j) * mu + this.beta * mu * mu)
+                    let pi = (-self.alpha * 0.5 * (c_i + c_j) * mu + self.beta * mu * mu)
                         / (0.5 * (rho_i + rho_j));
-                    acc -= kernel.gradient(&x_ij) * (p.masses[j] * pi);
+                    acc -= gradient * (p.masses[j] * pi);
                 }
                 *a = acc;
             });

@@ -6,6 +6,7 @@ mod effects;
 mod long_runs;
 mod plasticity;
 mod symmetry;
+mod updated_lagrangian;
 
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;
@@ -309,7 +310,7 @@ fn linear_momentum_is_conserved_exactly() {
     assert!(worst < 1e-13 * scale, "momentum change {worst:e}");
 }
 
-fn run_with_threads(threads: usize) -> (Vec<Vector<2>>, Vec<Tensor3>) {
+fn run_with_threads(threads: usize, formulation: Formulation) -> (Vec<Vector<2>>, Vec<Tensor3>) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -324,6 +325,7 @@ fn run_with_threads(threads: usize) -> (Vec<Vector<2>>, Vec<Tensor3>) {
             v,
             Setup {
                 end_time: 0.3,
+                formulation,
                 ..Setup::default()
             },
         ))
@@ -335,13 +337,22 @@ fn run_with_threads(threads: usize) -> (Vec<Vector<2>>, Vec<Tensor3>) {
 
 #[test]
 fn results_are_bit_identical_for_one_and_two_threads() {
-    let (u1, s1) = run_with_threads(1);
-    let (u2, s2) = run_with_threads(2);
-    assert!(u1.iter().zip(&u2).all(|(a, b)| a
+    for formulation in [
+        Formulation::TotalLagrangianCorrected,
+        Formulation::UpdatedLagrangian,
+    ] {
+        let (u1, s1) = run_with_threads(1, formulation);
+        let (u2, s2) = run_with_threads(2, formulation);
+        assert_bit_identical(&u1, &u2, &s1, &s2);
+    }
+}
+
+fn assert_bit_identical(u1: &[Vector<2>], u2: &[Vector<2>], s1: &[Tensor3], s2: &[Tensor3]) {
+    assert!(u1.iter().zip(u2).all(|(a, b)| a
         .iter()
         .zip(b.iter())
         .all(|(x, y)| x.to_bits() == y.to_bits())));
-    assert!(s1.iter().zip(&s2).all(|(a, b)| a
+    assert!(s1.iter().zip(s2).all(|(a, b)| a
         .iter()
         .zip(b.iter())
         .all(|(x, y)| x.to_bits() == y.to_bits())));

@@ -1,0 +1,197 @@
+//! The updated-Lagrangian (conventional SPH) formulation: wave physics, conservation, interaction
+//! between bodies through the kernel, neighbour rebuilds, and the tensile instability it is known
+//! for (R ch. 3, §6.1.1).
+
+use super::{lattice, model, Setup};
+use tlsph_kernels::Kernel;
+use tlsph_math::Vector;
+use tlsph_solver::{
+    ArtificialStress, Formulation, MaterialDescription, MaterialModel, Model, SetupError,
+    Simulation,
+};
+
+fn setup(end_time: f64) -> Setup {
+    Setup {
+        formulation: Formulation::UpdatedLagrangian,
+        end_time,
+        ..Setup::default()
+    }
+}
+
+/// Two 1D rods of the unit material (ρ = 1, M = 1, c = 1) meeting at x = 0 with ±v, as two
+/// bodies of the same material: they interact only through the kernel.
+fn two_rods(n: usize, v: f64, end_time: f64) -> Model<1> {
+    let dx = 1.0 / n as f64;
+    let left: Vec<Vector<1>> = lattice([n], dx)
+        .iter()
+        .map(|x| x.add_scalar(-1.0))
+        .collect();
+    let mut m = model(left, dx, |_| Vector::<1>::new(v), setup(end_time));
+    let mut right = m.bodies[0].clone();
+    right.name = "right".into();
+    right.positions = lattice([n], dx);
+    right.velocities = vec![Vector::<1>::new(-v); n];
+    m.bodies.push(right);
+    m
+}
+
+#[test]
+fn colliding_rods_carry_the_elastic_impact_stress_and_conserve_momentum() {
+    // Impact of equal rods: σ = −ρ c v behind both fronts (uniaxial strain, c = sqrt(M/ρ) = 1).
+    // At t = 0.25 both fronts are a quarter rod from the interface; the particles within 0.15
+    // of it carry the plateau. With Monaghan's viscosity (α = 1, β = 2, Fuller's setting) every
+    // one of them is within 1 % (measured 0.3 %); without it, collocated SPH rings in its
+    // odd–even mode (R §3.4, measured ±25 %) but the mean stays on the plateau within 2 %.
+    let v = 1e-3;
+    for viscosity in [None, Some((1.0, 2.0))] {
+        let mut m = two_rods(200, v, 0.25);
+        m.effects.pairwise_viscosity = viscosity;
+        let mut sim = Simulation::new(m).unwrap();
+        let mut worst_momentum = 0.0f64;
+        sim.run(|s, _| {
+            let p: f64 = (0..s.n_particles())
+                .map(|i| s.masses()[i] * s.velocity(i)[0])
+                .sum();
+            worst_momentum = worst_momentum.max(p.abs());
+        })
+        .unwrap();
+        let x = |i: usize| sim.positions0()[i][0] + sim.displacements()[i][0];
+        let plateau: Vec<f64> = (0..sim.n_particles())
+            .filter(|&i| x(i).abs() < 0.15)
+            .map(|i| sim.stresses()[i][(0, 0)])
+            .collect();
+        assert!(plateau.len() > 50);
+        let mean = plateau.iter().sum::<f64>() / plateau.len() as f64;
+        assert!((mean + v).abs() < 0.02 * v, "mean σ = {mean:e}");
+        if viscosity.is_some() {
+            for s in &plateau {
+                assert!((s + v).abs() < 0.01 * v, "σ = {s:e}, expected {:e}", -v);
+            }
+        }
+        // Pair forces are equal and opposite: total momentum stays zero to round-off.
+        let scale: f64 = sim.masses().iter().sum::<f64>() * v;
+        assert!(
+            worst_momentum < 1e-13 * scale,
+            "momentum {worst_momentum:e}"
+        );
+        // Energy: kinetic + internal + what the viscosity booked is conserved to the
+        // leap-frog error (well below 1 % of the impact energy).
+        let d = sim.diagnostics();
+        let booked: f64 = d.effect_energies.iter().map(|(_, e)| e).sum();
+        let e0 = 0.5 * scale * v;
+        let total = d.kinetic + d.internal + booked;
+        assert!((total - e0).abs() < 1e-2 * e0, "E = {total:e}, E0 = {e0:e}");
+    }
+}
+
+#[test]
+fn bodies_of_different_materials_do_not_interact_through_the_kernel() {
+    let mut m = two_rods(50, 1e-3, 0.2);
+    let mut other = m.materials[0].clone();
+    other.name = "other".into();
+    m.materials.push(other);
+    m.bodies[1].material = 1;
+    let mut sim = Simulation::new(m).unwrap();
+    sim.run(|_, _| {}).unwrap();
+    // They pass through each other unstressed.
+    assert!(sim.stresses().iter().all(|s| s.norm() == 0.0));
+}
+
+#[test]
+fn fast_translation_rebuilds_the_neighbour_list_and_stays_unstressed() {
+    let dx = 0.05;
+    let positions = lattice([10, 8], dx);
+    let mut sim = Simulation::new(model(
+        positions,
+        dx,
+        |_| Vector::<2>::new(0.3, -0.2),
+        setup(2.0),
+    ))
+    .unwrap();
+    sim.run(|_, _| {}).unwrap();
+    // The block moved 0.72, about 12 h: the list must have been rebuilt many times (skin ¼h,
+    // rebuild after ⅛h of motion), and a uniform velocity gives L = 0 exactly.
+    let rebuilds = sim.neighbour_rebuilds().unwrap();
+    assert!(rebuilds > 50, "{rebuilds} rebuilds");
+    assert!(sim.stresses().iter().all(|s| s.norm() == 0.0));
+    let d = sim.diagnostics();
+    assert!(d.internal == 0.0);
+}
+
+#[test]
+fn density_follows_the_continuity_equation_for_a_uniform_expansion() {
+    // v = εX in 1D: every particle keeps its velocity in the interior (uniform stress gives no
+    // force there), so x = X(1 + εt) and the discrete continuity equation (F 2.21) reads
+    // dρ/dt = −ρ (m/ρ) ε Σ_k 2 kΔx (−W'(kΔx(1 + εt)))/Δx … integrated here with fine steps.
+    // The raw kernel gradient is not first-order consistent (R 2.41): at t = 0 its lattice sum
+    // is 1.0224, not 1, for the cubic spline at h = 1.2Δx — ρ must follow that, not exp(−εt).
+    let dx = 0.01;
+    let eps = 0.05;
+    let positions = lattice([200], dx);
+    let mut sim = Simulation::new(model(
+        positions,
+        dx,
+        |x| Vector::<1>::new(eps * (x[0] - 1.0)),
+        setup(0.2),
+    ))
+    .unwrap();
+    sim.run(|_, _| {}).unwrap();
+    let kernel = tlsph_kernels::CubicSpline::new(1, 1.2 * dx).unwrap();
+    let divergence_sum = |t: f64| -> f64 {
+        (1..=3)
+            .map(|k| {
+                let r = k as f64 * dx * (1.0 + eps * t);
+                -2.0 * (k as f64 * dx) * kernel.derivative(r)
+            })
+            .sum()
+    };
+    assert!((divergence_sum(0.0) * dx - 1.0224).abs() < 1e-4);
+    // dρ/dt = −ε m Σ(t) with m = ρ0 Δx = Δx (unit density).
+    let n = 20_000;
+    let h = sim.time() / n as f64;
+    let mut rho = 1.0;
+    for k in 0..n {
+        rho -= h * eps * dx * divergence_sum((k as f64 + 0.5) * h);
+    }
+    let measured = sim.sample(tlsph_solver::ParticleField::Density, 100);
+    // The stress wave from the free ends (c = 1) has not reached the middle by t = 0.2. The
+    // scheme evaluates the kernel at x^n with v^{n−½}, a half-step lag worth about
+    // ½Δt ε |Δρ| ≈ 3e-6 here; 1e-5 still separates the result from the consistent-gradient
+    // answer exp(−εt) (1.6e-4 away).
+    assert!(
+        (measured - rho).abs() < 1e-5,
+        "ρ = {measured}, continuity gives {rho}"
+    );
+}
+
+#[test]
+fn total_lagrangian_only_effects_are_refused_with_the_field_named() {
+    let dx = 0.1;
+    let mut m = model(
+        lattice([5, 5], dx),
+        dx,
+        |_| Vector::<2>::zeros(),
+        setup(1.0),
+    );
+    m.effects.hourglass_control = Some(1.0);
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig { field, .. }) => assert_eq!(field, "hourglass_control"),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    let mut m = model(
+        lattice([5, 5], dx),
+        dx,
+        |_| Vector::<2>::zeros(),
+        Setup::default(),
+    );
+    m.effects.artificial_stress = Some(ArtificialStress {
+        epsilon: 0.3,
+        exponent: 6.0,
+    });
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig { field, .. }) => assert_eq!(field, "artificial_stress"),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    let _unused: Option<MaterialDescription> = None;
+    let _ = MaterialModel::LinearElastic;
+}
