@@ -27,6 +27,11 @@ pub struct Problem {
 pub fn problems() -> Vec<Problem> {
     vec![
         Problem {
+            id: problems::r_p1::ID,
+            title: "1D stability: symmetric impact of two elastic rods, TLSPH vs conventional SPH",
+            run: problems::r_p1::run,
+        },
+        Problem {
             id: problems::r_p2::ID,
             title: "elastic uniaxial-strain wave, two-plate impact",
             run: problems::r_p2::run,
@@ -40,6 +45,11 @@ pub fn problems() -> Vec<Problem> {
             id: problems::r_p4::ID,
             title: "clamped-free rod vibration from a linear velocity field",
             run: problems::r_p4::run,
+        },
+        Problem {
+            id: problems::r_p5::ID,
+            title: "2D stability: pre-tensioned steel block, TLSPH vs conventional SPH",
+            run: problems::r_p5::run,
         },
         Problem {
             id: problems::r_p6::ID,

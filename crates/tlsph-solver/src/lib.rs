@@ -19,6 +19,7 @@ mod model;
 mod particles;
 mod plasticity;
 mod simulation;
+pub mod stability;
 mod step;
 mod updated_lagrangian;
 

@@ -12,6 +12,7 @@ use crate::fields::ParticleField;
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
+use crate::stability::NeighbourDistances;
 use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
     ConstitutiveStep, NoViscosity,
@@ -613,6 +614,59 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
+    /// Nearest-neighbour distances of the surviving real particles in the current
+    /// configuration, relative to each body's initial spacing (see [`crate::stability`]).
+    /// One cell-list search: a diagnostic for output intervals, not part of a step.
+    pub fn neighbour_distances(&self) -> NeighbourDistances {
+        let n = self.n_particles();
+        let p = &self.particles;
+        let alive: Vec<usize> = (0..n)
+            .filter(|&i| self.removed.is_empty() || !self.removed[i])
+            .collect();
+        let positions: Vec<Vector<D>> = alive
+            .iter()
+            .map(|&i| p.positions0[i] + p.displacements[i])
+            .collect();
+        let mut spacing = vec![0.0; n];
+        for b in &self.bodies {
+            spacing[b.range.clone()].fill(b.spacing);
+        }
+        let cap = 2.0;
+        let largest = self.bodies.iter().map(|b| b.spacing).fold(0.0, f64::max);
+        let Ok(list) = build_neighbour_list(&positions, cap * largest) else {
+            // Only non-finite positions make the search fail.
+            return NeighbourDistances {
+                min_ratio: f64::NAN,
+                max_ratio: f64::NAN,
+                clumping_index: f64::NAN,
+            };
+        };
+        let ratios: Vec<f64> = alive
+            .par_iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                let nearest = list
+                    .neighbours_of(k)
+                    .iter()
+                    .map(|&m| (positions[m as usize] - positions[k]).norm())
+                    .fold(f64::INFINITY, f64::min);
+                (nearest / spacing[i]).min(cap)
+            })
+            .collect();
+        let count = ratios.len().max(1) as f64;
+        let mean = ratios.iter().sum::<f64>() / count;
+        let variance = ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / count;
+        NeighbourDistances {
+            min_ratio: ratios.iter().copied().fold(f64::INFINITY, f64::min),
+            max_ratio: ratios.iter().copied().fold(0.0, f64::max),
+            clumping_index: if mean > 0.0 {
+                variance.sqrt() / mean
+            } else {
+                f64::NAN
+            },
+        }
+    }
+
     /// Verlet-list rebuilds so far (updated-Lagrangian formulation only).
     pub fn neighbour_rebuilds(&self) -> Option<u64> {
         self.updated.as_ref().map(|u| u.rebuilds())
@@ -731,6 +785,50 @@ impl<const D: usize> Simulation<D> {
             .find(|b| b.range.contains(&i))
             .expect("every particle belongs to a body");
         (info.name.clone(), i - info.range.start)
+    }
+
+    /// Sets a uniform initial Cauchy stress σ0 (symmetric, tension positive) on every particle
+    /// of body `body` before the first step, e.g. a prestressed state (problems.md R-P5). The
+    /// rate-form stress updates carry it on; the Green–Lagrange path computes stress from F
+    /// alone and an equation of state computes pressure from J alone, so those refuse it.
+    pub fn set_initial_stress(
+        &mut self,
+        body: usize,
+        stress: tlsph_math::Tensor3,
+    ) -> Result<(), SetupError> {
+        let refuse = |message: String| {
+            Err(SetupError::InvalidConfig {
+                field: "initial_stress",
+                message,
+            })
+        };
+        let Some(info) = self.bodies.get(body) else {
+            return refuse(format!("body #{body} does not exist"));
+        };
+        if self.steps_done > 0 {
+            return refuse("must be set before the first step".into());
+        }
+        if !(stress.iter().all(|x| x.is_finite()) && (stress - stress.transpose()).norm() == 0.0) {
+            return refuse(format!(
+                "body `{}`: stress must be finite and symmetric",
+                info.name
+            ));
+        }
+        let material = &self.materials[info.material];
+        let stress_from_state = self.config.stress_update == StressUpdate::GreenLagrange
+            || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)));
+        if stress_from_state {
+            return refuse(format!(
+                "body `{}`: its stress is a function of the current state (Green–Lagrange path or an equation of state), so an initial stress would be lost",
+                info.name
+            ));
+        }
+        let range = info.range.clone();
+        self.particles.stress[range.clone()].fill(stress);
+        // P = J σ F⁻ᵀ = σ at the reference state (F = I).
+        self.particles.pk1[range].fill(tlsph_math::project(&stress));
+        self.ghosts.refresh_stress(&mut self.particles);
+        Ok(())
     }
 
     /// Overwrites the displacements u (one per particle). Before the first step this sets an

@@ -1,7 +1,9 @@
 //! One module per published problem.
 
 pub mod r_c7x;
+pub mod r_p1;
 pub mod r_p2;
 pub mod r_p3;
 pub mod r_p4;
+pub mod r_p5;
 pub mod r_p6;
