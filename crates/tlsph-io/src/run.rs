@@ -9,6 +9,7 @@ use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use tlsph_solver::stability::{StabilityMonitor, StabilityThresholds};
 use tlsph_solver::{Diagnostics, Model, ParticleField, SetupError, Simulation, StepError};
 
 /// Samples of one probe.
@@ -47,6 +48,8 @@ pub struct RunRecord {
     pub wall_s: f64,
     /// Why the run stopped early, if it did.
     pub failure: Option<StepError>,
+    /// The stability report, sampled with the diagnostics (see `tlsph_solver::stability`).
+    pub stability: StabilityMonitor,
 }
 
 impl RunRecord {
@@ -96,9 +99,11 @@ pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 /// Frame callback: receives a particle frame at every frame interval.
 pub type FrameSink<'a> = &'a mut dyn FnMut(&Frame);
 
-/// Sampling intervals of a run.
+/// Sampling settings of a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Intervals {
+    /// Thresholds of the stability report sampled with the diagnostics.
+    pub stability: StabilityThresholds,
     /// Interval of energy/momentum rows \[s\].
     pub energy: f64,
     /// Interval of particle frames \[s\]; `None` for no frames.
@@ -198,10 +203,12 @@ pub fn run_model<const D: usize>(
     let mut next_energy = 0.0f64;
     let mut next_frame = 0.0f64;
     let mut diagnostics = Vec::new();
+    let mut stability = StabilityMonitor::new(intervals.stability);
     let start = Instant::now();
     let mut failure = None;
     while !sim.finished() {
         if let Err(e) = sim.step() {
+            stability.observe_breakdown(sim.steps_done(), sim.time());
             failure = Some(e);
             break;
         }
@@ -221,7 +228,9 @@ pub fn run_model<const D: usize>(
             }
         }
         if t >= next_energy || last {
-            diagnostics.push(sim.diagnostics());
+            let d = sim.diagnostics();
+            stability.observe_with(&sim, &d);
+            diagnostics.push(d);
             next_energy = next_multiple(t, intervals.energy);
         }
         if let Some(interval) = intervals.frames {
@@ -239,6 +248,7 @@ pub fn run_model<const D: usize>(
         particles: sim.n_particles(),
         wall_s: start.elapsed().as_secs_f64(),
         failure,
+        stability,
     };
     Ok((record, sim))
 }
@@ -256,6 +266,7 @@ pub fn run_scene_with_frames(
     progress: Progress<'_>,
 ) -> Result<RunRecord, SetupError> {
     let intervals = Intervals {
+        stability: scene.output.stability,
         energy: scene.output.energy_interval,
         frames: scene.output.frame_interval,
     };
@@ -442,6 +453,29 @@ fn write_run_folder(
         .map(String::from),
         momentum_rows,
     )?;
+    let stability_rows = record.stability.samples.iter().map(|s| {
+        vec![
+            s.time,
+            s.step as f64,
+            s.distances.min_ratio,
+            s.distances.max_ratio,
+            s.distances.clumping_index,
+            s.energy_drift,
+        ]
+    });
+    write_csv(
+        &partial.join("stability.csv"),
+        &[
+            "time",
+            "step",
+            "min_neighbour_ratio",
+            "max_neighbour_ratio",
+            "clumping_index",
+            "energy_drift",
+        ]
+        .map(String::from),
+        stability_rows,
+    )?;
     let (status, message) = match &record.failure {
         None => ("complete", String::new()),
         Some(e) => ("failed", e.to_string()),
@@ -456,6 +490,7 @@ fn write_run_folder(
         record.diagnostics.last().map_or(0, |d| d.failed_particles),
         origin = scene.origin,
     );
+    let summary = summary + &stability_summary(&record.stability);
     let summary_path = partial.join("summary.toml");
     fs::write(&summary_path, summary).map_err(|e| io(&summary_path, e))?;
     // Swap the finished folder into place; the old result survives until the new one is there.
@@ -471,6 +506,49 @@ fn write_run_folder(
         fs::remove_dir_all(&old).map_err(|e| io(&old, e))?;
     }
     Ok(())
+}
+
+/// The `[stability]` table of `summary.toml`: thresholds, extremes and the first crossing.
+fn stability_summary(monitor: &StabilityMonitor) -> String {
+    let t = &monitor.thresholds;
+    let (lo, hi, clumping, drift) = monitor.extremes();
+    let mut out = format!(
+        "\n[stability]\nstayed_inside = {}\nmin_neighbour_ratio = {}\nmax_neighbour_ratio = {}\nmax_clumping_index = {}\nmax_energy_drift = {}\n",
+        monitor.stayed_inside(),
+        toml_number(lo),
+        toml_number(hi),
+        toml_number(clumping),
+        toml_number(drift),
+    );
+    out += &format!(
+        "\n[stability.thresholds]\nmin_neighbour_ratio = {}\nmax_neighbour_ratio = {}\nclumping_index = {}\nenergy_drift = {}\n",
+        t.min_neighbour_ratio, t.max_neighbour_ratio, t.clumping_index, t.energy_drift
+    );
+    if let Some(c) = &monitor.first_crossing {
+        out += &format!(
+            "\n[stability.first_crossing]\nquantity = {:?}\nstep = {}\ntime = {}\nvalue = {}\n",
+            c.quantity,
+            c.step,
+            c.time,
+            toml_number(c.value)
+        );
+    }
+    out
+}
+
+/// A float as TOML (which spells infinities and NaN `inf` and `nan`).
+fn toml_number(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        }
+    } else {
+        format!("{x:?}")
+    }
 }
 
 /// `<dir>.<suffix>` next to `dir`.

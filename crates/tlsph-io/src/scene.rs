@@ -2,12 +2,15 @@
 //! it into a solver `Model`. Every error names the file, line, column and field.
 
 use crate::geometry::{fill_shape, Shape};
-use crate::scene_file::{BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable};
+use crate::scene_file::{
+    BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable,
+};
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
+use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
     Formulation, MaterialDescription, MaterialModel, Model, ParticleField, SimulationConfig,
@@ -73,6 +76,8 @@ pub struct OutputSpec {
     pub energy_interval: f64,
     /// Interval of VTK particle frames (`frames/*.vtu`, `frames.pvd`) \[s\]; `None` for none.
     pub frame_interval: Option<f64>,
+    /// Thresholds of the stability report (`stability.csv`, `[stability]` of `summary.toml`).
+    pub stability: StabilityThresholds,
 }
 
 /// A solver model in the scene's dimension.
@@ -259,6 +264,45 @@ impl Context<'_> {
         }
         Ok(Vector::<D>::from_iterator(v.iter().copied()))
     }
+}
+
+/// Thresholds from `[stability]`, defaults where a key is absent; the minimum ratio must be
+/// in (0, 1), the maximum above 1, the others > 0.
+fn stability_thresholds(
+    ctx: &Context<'_>,
+    table: Option<&StabilityTable>,
+) -> Result<StabilityThresholds, SceneError> {
+    let mut t = StabilityThresholds::default();
+    let Some(table) = table else {
+        return Ok(t);
+    };
+    if let Some(v) = &table.min_neighbour_ratio {
+        t.min_neighbour_ratio = ctx.positive(v, "stability.min_neighbour_ratio")?;
+        if t.min_neighbour_ratio >= 1.0 {
+            return Err(ctx.error(
+                &v.span(),
+                "stability.min_neighbour_ratio",
+                format!("must be below 1, got {}", t.min_neighbour_ratio),
+            ));
+        }
+    }
+    if let Some(v) = &table.max_neighbour_ratio {
+        t.max_neighbour_ratio = ctx.positive(v, "stability.max_neighbour_ratio")?;
+        if t.max_neighbour_ratio <= 1.0 {
+            return Err(ctx.error(
+                &v.span(),
+                "stability.max_neighbour_ratio",
+                format!("must be above 1, got {}", t.max_neighbour_ratio),
+            ));
+        }
+    }
+    if let Some(v) = &table.clumping_index {
+        t.clumping_index = ctx.positive(v, "stability.clumping_index")?;
+    }
+    if let Some(v) = &table.energy_drift {
+        t.energy_drift = ctx.positive(v, "stability.energy_drift")?;
+    }
+    Ok(t)
 }
 
 type Built<const D: usize> = (Model<D>, Vec<ProbeSpec>, OutputSpec);
@@ -584,6 +628,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             Some(i) => Some(ctx.positive(i, "output.frame_interval")?),
             None => None,
         },
+        stability: stability_thresholds(ctx, file.stability.as_ref())?,
     };
     Ok((
         Model {

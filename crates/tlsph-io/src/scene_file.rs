@@ -34,6 +34,18 @@ pub(crate) struct SceneFile {
     pub artificial_viscosity: Option<ArtificialViscosityTable>,
     #[serde(default)]
     pub artificial_stress: Option<Spanned<ArtificialStressTable>>,
+    #[serde(default)]
+    pub stability: Option<StabilityTable>,
+}
+
+/// `[stability]`: thresholds of the per-run stability report.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct StabilityTable {
+    pub min_neighbour_ratio: Option<Spanned<f64>>,
+    pub max_neighbour_ratio: Option<Spanned<f64>>,
+    pub clumping_index: Option<Spanned<f64>>,
+    pub energy_drift: Option<Spanned<f64>>,
 }
 
 /// `[artificial_stress]`: Monaghan/Gray artificial stress (updated-Lagrangian only).

@@ -242,3 +242,105 @@ fn frames_are_written_as_vtu_with_a_pvd_index() {
     }
     assert!(vtu.contains("NumberOfPoints=\"200\""));
 }
+
+/// Two 1D rods meeting at x = 0.5 with ±0.01 (R-P1 in miniature, strain 1 %): the wave
+/// reflected from the free ends puts the interface in tension at t = 1 (c = 1, rods 0.5 long).
+fn rod_impact(formulation: &str) -> String {
+    PLATE_IMPACT
+        .replace("\"total-lagrangian\"", &format!("\"{formulation}\""))
+        .replace("end_time = 2.0", "end_time = 3.0")
+        .replace(
+            "box = { min = [0.5], max = [2.0] }",
+            "box = { min = [0.5], max = [1.0] }",
+        )
+        .replace("velocity = [0.1]", "velocity = [0.01]")
+        .replace("velocity = [0.0]", "velocity = [-0.01]")
+        .replace("at = [1.25]", "at = [0.75]")
+}
+
+#[test]
+fn every_run_writes_a_stability_report_and_names_the_first_crossing() {
+    // TLSPH keeps the lattice inside the default thresholds; conventional SPH clumps once
+    // the rods are in tension (1 < t < 2), which the report must name with step and time.
+    let tmp = tempfile::tempdir().unwrap();
+    for (formulation, stays_inside) in [
+        ("total-lagrangian-corrected", true),
+        ("updated-lagrangian", false),
+    ] {
+        let text = rod_impact(formulation)
+            + "\n[stability]\nmin_neighbour_ratio = 0.95\nmax_neighbour_ratio = 1.05\n";
+        let scene = parse_scene(&text, "scene.toml").unwrap();
+        let dir = tmp.path().join(formulation);
+        let record = run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+        assert_eq!(
+            record.stability.stayed_inside(),
+            stays_inside,
+            "{formulation}"
+        );
+        let csv = fs::read_to_string(dir.join("stability.csv")).unwrap();
+        assert!(csv.starts_with(
+            "time,step,min_neighbour_ratio,max_neighbour_ratio,clumping_index,energy_drift\n"
+        ));
+        assert_eq!(csv.lines().count(), record.diagnostics.len() + 1);
+        let summary: toml::Table = fs::read_to_string(dir.join("summary.toml"))
+            .unwrap()
+            .parse()
+            .unwrap();
+        let stability = summary["stability"].as_table().unwrap();
+        assert_eq!(stability["stayed_inside"].as_bool(), Some(stays_inside));
+        if !stays_inside {
+            let crossing = stability["first_crossing"].as_table().unwrap();
+            let t = crossing["time"].as_float().unwrap();
+            assert!((1.0..2.0).contains(&t), "crossing at t = {t}");
+            assert_eq!(crossing["quantity"].as_str(), Some("min_neighbour_ratio"));
+        }
+    }
+}
+
+#[test]
+fn stability_thresholds_are_checked_with_field_and_line() {
+    for (bad, field) in [
+        ("min_neighbour_ratio = 1.2", "stability.min_neighbour_ratio"),
+        ("max_neighbour_ratio = 0.9", "stability.max_neighbour_ratio"),
+        ("clumping_index = -1.0", "stability.clumping_index"),
+        ("energy_drift = 0.0", "stability.energy_drift"),
+    ] {
+        let text = format!("{PLATE_IMPACT}\n[stability]\n{bad}\n");
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert_eq!(e.line, Some(line_of(&text, bad)), "{e}");
+    }
+}
+
+#[test]
+fn updated_lagrangian_scenes_parse_and_refuse_total_lagrangian_only_effects() {
+    let ul = rod_impact("updated-lagrangian");
+    let ok = format!("{ul}\n[artificial_stress]\nexponent = 4.0\n");
+    let scene = parse_scene(&ok, "scene.toml").unwrap();
+    match scene.model {
+        DimensionModel::One(m) => {
+            let a = m.effects.artificial_stress.unwrap();
+            assert_eq!((a.epsilon, a.exponent), (0.3, 4.0));
+        }
+        _ => unreachable!(),
+    }
+    for (extra, field, needle) in [
+        (
+            "\n[hourglass_control]\ncoefficient = 1.0\n",
+            "hourglass_control",
+            "coefficient",
+        ),
+        (
+            "\n[artificial_stress]\nepsilon = -0.3\n",
+            "artificial_stress.epsilon",
+            "epsilon",
+        ),
+    ] {
+        let text = format!("{ul}{extra}");
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert_eq!(e.line, Some(line_of(&text, needle)), "{e}");
+    }
+    let tl = format!("{PLATE_IMPACT}\n[artificial_stress]\nepsilon = 0.3\n");
+    assert_eq!(error_of(&tl).field, "artificial_stress");
+}
