@@ -62,6 +62,11 @@ pub fn problems() -> Vec<Problem> {
             run: problems::r_c7x::run,
         },
         Problem {
+            id: problems::f_a1::ID,
+            title: "plate with a central hole, quasi-static tension vs Kirsch",
+            run: problems::f_a1::run,
+        },
+        Problem {
             id: "R-C3",
             title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
             run: stability::run,

@@ -35,6 +35,32 @@ pub enum Shape<const D: usize> {
     },
 }
 
+impl<const D: usize> Shape<D> {
+    /// Whether the point `x` lies in the shape, by the rules a cut (`[[body.cut]]`) removes
+    /// lattice points with: a box is closed (min ≤ x ≤ max, like `clip` and boundary boxes);
+    /// a disc, sphere or cylinder keeps the strict radial test of [`fill_shape`]
+    /// (distance < radius), and a cylinder is closed along its axis (0 ≤ s ≤ length).
+    pub fn contains(&self, x: &Vector<D>) -> bool {
+        match self {
+            Shape::Box { min, max } => (0..D).all(|k| x[k] >= min[k] && x[k] <= max[k]),
+            Shape::Ball { centre, radius } => (x - centre).norm() < *radius,
+            Shape::Cylinder {
+                base,
+                axis,
+                radius,
+                length,
+            } => {
+                let s = x[*axis] - base[*axis];
+                let r2: f64 = (0..D)
+                    .filter(|k| k != axis)
+                    .map(|k| (x[k] - base[k]).powi(2))
+                    .sum();
+                (0.0..=*length).contains(&s) && r2.sqrt() < *radius
+            }
+        }
+    }
+}
+
 /// Lattice points of `shape` at pitch `spacing`, leaving out points closer than half a spacing
 /// to any point of `existing` (so later shapes of a body do not duplicate earlier ones).
 pub fn fill_shape<const D: usize>(
@@ -173,6 +199,41 @@ mod tests {
         assert_eq!(pa.len(), 100);
         assert_eq!(fill_shape(&b, 0.1, &pa).len(), 100);
         assert!(fill_shape(&a, 0.1, &pa).is_empty());
+    }
+
+    #[test]
+    fn containment_follows_the_documented_boundary_rules() {
+        let b = Shape::<2>::Box {
+            min: Vector::<2>::new(0.0, 0.0),
+            max: Vector::<2>::new(1.0, 2.0),
+        };
+        assert!(
+            b.contains(&Vector::<2>::new(1.0, 2.0)),
+            "box faces belong to the box"
+        );
+        assert!(!b.contains(&Vector::<2>::new(1.0 + 1e-12, 1.0)));
+        let d = Shape::<2>::Ball {
+            centre: Vector::<2>::new(1.0, 1.0),
+            radius: 1.0,
+        };
+        assert!(
+            !d.contains(&Vector::<2>::new(2.0, 1.0)),
+            "a disc's rim is outside"
+        );
+        assert!(d.contains(&Vector::<2>::new(1.999, 1.0)));
+        let c = Shape::<3>::Cylinder {
+            base: Vector::<3>::new(0.0, 0.0, 1.0),
+            axis: 2,
+            radius: 0.5,
+            length: 2.0,
+        };
+        assert!(c.contains(&Vector::<3>::new(0.4, 0.0, 3.0)));
+        assert!(!c.contains(&Vector::<3>::new(0.4, 0.0, 3.01)));
+        assert!(!c.contains(&Vector::<3>::new(0.0, 0.0, 0.99)));
+        assert!(
+            !c.contains(&Vector::<3>::new(0.3, 0.4, 2.0)),
+            "radius 0.5 is outside"
+        );
     }
 
     #[test]

@@ -760,6 +760,7 @@ fn build_body<const D: usize>(
             positions.push(x);
         }
     }
+    apply_cuts(ctx, b, &mut positions, &mut velocities)?;
     let volume = spacing.powi(D as i32);
     Ok(BodyDescription {
         name: name.clone(),
@@ -769,6 +770,67 @@ fn build_body<const D: usize>(
         positions,
         velocities,
     })
+}
+
+/// Removes the lattice points of every `[[body.cut]]` from a filled body (holes, notches):
+/// a point goes when it lies in the cut's shape ([`Shape::contains`]). A cut that removes
+/// nothing, or cuts that leave the body empty, are errors naming the body.
+fn apply_cuts<const D: usize>(
+    ctx: &Context<'_>,
+    b: &BodyTable,
+    positions: &mut Vec<Vector<D>>,
+    velocities: &mut Vec<Vector<D>>,
+) -> Result<(), SceneError> {
+    let name = b.name.get_ref();
+    let mut keep = vec![true; positions.len()];
+    for (k, cut) in b.cut.iter().enumerate() {
+        let field = |key: &str| format!("body[{name}].cut[{k}].{key}");
+        if cut.box_.is_none()
+            && cut.cylinder.is_none()
+            && cut.sphere.is_none()
+            && cut.disc.is_none()
+        {
+            return Err(ctx.error(
+                &b.name.span(),
+                &field("shape"),
+                "has no shape: add box, cylinder, sphere or disc".into(),
+            ));
+        }
+        let as_shape = ShapeTable {
+            box_: cut.box_.clone(),
+            cylinder: cut.cylinder.clone(),
+            sphere: cut.sphere.clone(),
+            disc: cut.disc.clone(),
+            ..ShapeTable::default()
+        };
+        let (shape, span) = shape_of::<D>(ctx, &as_shape, &field)?;
+        let mut removed = 0usize;
+        for (x, kept) in positions.iter().zip(keep.iter_mut()) {
+            if shape.contains(x) {
+                removed += usize::from(*kept);
+                *kept = false;
+            }
+        }
+        if removed == 0 {
+            return Err(ctx.error(
+                &span,
+                &field("shape"),
+                format!("removes no particle of body `{name}` (is it outside the body, between lattice points, or inside an earlier cut?)"),
+            ));
+        }
+    }
+    if !keep.iter().any(|k| *k) {
+        return Err(ctx.error(
+            &b.name.span(),
+            &format!("body[{name}].cut"),
+            format!("the cuts remove every particle of body `{name}`"),
+        ));
+    }
+    let mut flags = keep.iter();
+    positions.retain(|_| *flags.next().expect("one flag per particle"));
+    let mut flags = keep.iter();
+    velocities.retain(|_| *flags.next().expect("one flag per particle"));
+    Ok(())
 }
 
 fn shape_of<const D: usize>(

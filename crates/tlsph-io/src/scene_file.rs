@@ -192,6 +192,20 @@ pub(crate) struct BodyTable {
     /// ... or several in `[[body.shape]]` tables.
     #[serde(default)]
     pub shape: Vec<ShapeTable>,
+    /// Holes and notches: `[[body.cut]]` tables whose lattice points are removed.
+    #[serde(default)]
+    pub cut: Vec<CutTable>,
+}
+
+/// `[[body.cut]]`: a region removed from the body after all its shapes are filled.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CutTable {
+    #[serde(rename = "box")]
+    pub box_: Option<Spanned<BoxShape>>,
+    pub cylinder: Option<Spanned<CylinderShape>>,
+    pub sphere: Option<Spanned<RoundShape>>,
+    pub disc: Option<Spanned<RoundShape>>,
 }
 
 /// One shape of a body with its own initial velocity field.

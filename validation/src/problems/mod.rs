@@ -1,5 +1,6 @@
 //! One module per published problem.
 
+pub mod f_a1;
 pub mod r_c7x;
 pub mod r_p1;
 pub mod r_p2;

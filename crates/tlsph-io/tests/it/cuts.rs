@@ -1,0 +1,212 @@
+//! `[[body.cut]]`: holes and notches removed from a filled body, checked against hand counts,
+//! and the errors a wrong cut gives.
+
+use tlsph_io::{parse_scene, DimensionModel, SceneError};
+
+/// Fuller's plate with a central hole (F-A1): 80 x 80 lattice, R = 10 about (40, 40), the top
+/// and bottom rows pulled apart.
+const PLATE_WITH_HOLE: &str = r#"
+[simulation]
+dimension = 2
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.5
+cfl = 0.3
+end_time = 1.0
+
+[[material]]
+name = "m-f"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+
+[[body]]
+name = "plate"
+material = "m-f"
+spacing = 1.0
+box = { min = [0.0, 0.0], max = [80.0, 80.0] }
+
+[[body.cut]]
+disc = { centre = [40.0, 40.0], radius = 10.0 }
+
+[[boundary]]
+name = "top"
+body = "plate"
+box = { min = [-1.0, 79.0], max = [81.0, 81.0] }
+velocity = [0.0, 0.001]
+components = ["y"]
+
+[[boundary]]
+name = "middle-row"
+body = "plate"
+box = { min = [-1.0, 40.2], max = [81.0, 40.8] }
+fixed = true
+components = ["x"]
+"#;
+
+fn plate(text: &str) -> tlsph_solver::Model<2> {
+    match parse_scene(text, "plate.toml").unwrap().model {
+        DimensionModel::Two(m) => m,
+        _ => panic!("2D scene"),
+    }
+}
+
+fn error_of(text: &str) -> SceneError {
+    parse_scene(text, "plate.toml").expect_err("scene must be rejected")
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("needle in scene")
+        + 1
+}
+
+#[test]
+fn a_central_hole_removes_the_hand_counted_lattice_points() {
+    let model = plate(PLATE_WITH_HOLE);
+    let body = &model.bodies[0];
+    // Hand count of one quadrant: lattice points (a, b) = (i + ½, j + ½) about the centre with
+    // a² + b² < 100. Rows b = 0.5 … 9.5 hold 10, 10, 10, 9, 9, 8, 8, 7, 5, 3 points
+    // (e.g. b = 9.5: a² < 9.75, so a = 0.5, 1.5, 2.5): 79 per quadrant, 316 in the hole.
+    assert_eq!(body.positions.len(), 80 * 80 - 4 * 79);
+    assert_eq!(body.velocities.len(), body.positions.len());
+    // Nothing is left inside the hole and every lattice point outside it is still there.
+    let centre = tlsph_math::Vector::<2>::new(40.0, 40.0);
+    assert!(body.positions.iter().all(|x| (x - centre).norm() >= 10.0));
+    let outside = (0..80)
+        .flat_map(|i| (0..80).map(move |j| (i as f64 + 0.5, j as f64 + 0.5)))
+        .filter(|&(x, y)| (x - 40.0f64).hypot(y - 40.0) >= 10.0)
+        .count();
+    assert_eq!(outside, body.positions.len());
+}
+
+#[test]
+fn boundary_boxes_select_rows_of_the_cut_body() {
+    let model = plate(PLATE_WITH_HOLE);
+    // The top row is whole; the row through the hole (y = 40.5) has lost 2 x 10 points.
+    let top = &model.boundaries[0];
+    assert_eq!(top.particles.len(), 80);
+    assert!(top
+        .particles
+        .iter()
+        .all(|&i| (model.bodies[0].positions[i][1] - 79.5).abs() < 1e-12));
+    assert_eq!(model.boundaries[1].particles.len(), 60);
+}
+
+#[test]
+fn notches_and_overlapping_cuts_count_each_point_once() {
+    // An edge notch 10 deep and 2 rows high, then a box overlapping its tip: the second cut
+    // removes only the 2 x 2 points beyond the notch (x = 10.5, 11.5).
+    let text = PLATE_WITH_HOLE.replace(
+        "disc = { centre = [40.0, 40.0], radius = 10.0 }",
+        "box = { min = [-1.0, 39.0], max = [10.0, 41.0] }\n\n[[body.cut]]\nbox = { min = [5.0, 39.0], max = [12.0, 41.0] }",
+    );
+    let model = plate(&text);
+    assert_eq!(model.bodies[0].positions.len(), 6400 - 20 - 4);
+    assert_eq!(model.boundaries[1].particles.len(), 80 - 12);
+}
+
+#[test]
+fn a_cylinder_cut_drills_a_3d_plate() {
+    let text = r#"
+[simulation]
+dimension = 3
+formulation = "total-lagrangian"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = 1.0
+
+[[material]]
+name = "m"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+
+[[body]]
+name = "plate"
+material = "m"
+spacing = 1.0
+box = { min = [0.0, 0.0, 0.0], max = [4.0, 4.0, 2.0] }
+
+[[body.cut]]
+cylinder = { base = [2.0, 2.0, -1.0], axis = "z", radius = 1.0, length = 4.0 }
+"#;
+    // The four points (1.5 | 2.5, 1.5 | 2.5) are √0.5 from the axis: 4 per layer, 2 layers.
+    assert_eq!(parse_scene(text, "p.toml").unwrap().n_particles(), 32 - 8);
+}
+
+#[test]
+fn a_cut_with_an_unknown_key_is_located() {
+    let text = PLATE_WITH_HOLE.replace("radius = 10.0 }", "radius = 10.0 }\nvelocity = [0.0, 1.0]");
+    let e = error_of(&text);
+    assert_eq!(e.line, Some(line_of(&text, "velocity = [0.0, 1.0]")));
+    assert!(e.message.contains("velocity"), "{e}");
+}
+
+#[test]
+fn a_cut_of_the_wrong_dimension_names_its_field() {
+    let text = PLATE_WITH_HOLE.replace(
+        "disc = { centre = [40.0, 40.0], radius = 10.0 }",
+        "sphere = { centre = [40.0, 40.0, 0.0], radius = 10.0 }",
+    );
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate].cut[0].sphere");
+    assert_eq!(e.line, Some(line_of(&text, "sphere = {")));
+    assert!(e.message.contains("3D"), "{e}");
+    // A 3D centre on a 2D disc.
+    let text = PLATE_WITH_HOLE.replace("centre = [40.0, 40.0]", "centre = [40.0, 40.0, 1.0]");
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate].cut[0].disc.centre");
+    assert!(e.message.contains("2 finite components"), "{e}");
+}
+
+#[test]
+fn a_cut_that_removes_everything_names_the_body() {
+    let text = PLATE_WITH_HOLE.replace("radius = 10.0", "radius = 100.0");
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate].cut");
+    assert_eq!(e.line, Some(line_of(&text, "name = \"plate\"")));
+    assert!(e.message.contains("every particle of body `plate`"), "{e}");
+}
+
+#[test]
+fn a_cut_that_removes_nothing_or_has_no_shape_is_an_error() {
+    // Outside the plate.
+    let text = PLATE_WITH_HOLE.replace("centre = [40.0, 40.0]", "centre = [140.0, 40.0]");
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate].cut[0].shape");
+    assert_eq!(e.line, Some(line_of(&text, "disc = {")));
+    assert!(
+        e.message.contains("removes no particle of body `plate`"),
+        "{e}"
+    );
+    // Thinner than the spacing, between two lattice rows.
+    let text = PLATE_WITH_HOLE.replace(
+        "disc = { centre = [40.0, 40.0], radius = 10.0 }",
+        "box = { min = [0.0, 40.6], max = [80.0, 41.4] }",
+    );
+    assert!(error_of(&text).message.contains("removes no particle"));
+    // No shape at all.
+    let text = PLATE_WITH_HOLE.replace("disc = { centre = [40.0, 40.0], radius = 10.0 }", "");
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate].cut[0].shape");
+    assert!(e.message.contains("has no shape"), "{e}");
+}
+
+#[test]
+fn the_documented_plate_with_a_hole_and_a_notch_parses_as_stated() {
+    let doc = include_str!("../../../../docs/scene-format.md");
+    let section = &doc[doc.find("### `[[body.cut]]`").expect("cut section")..];
+    let start = section.find("```toml\n").expect("example") + "```toml\n".len();
+    let example = &section[start..start + section[start..].find("```").expect("fence end")];
+    let model = plate(example);
+    // 6400 − 316 (hole, hand count above) − 10 (notch: 2 rows × x = 0.5 … 4.5), as the text says.
+    assert_eq!(model.bodies[0].positions.len(), 6074);
+    assert!(section.contains("leaving 6074"));
+    assert_eq!(model.boundaries[0].particles.len(), 80);
+    assert_eq!(model.boundaries[1].particles.len(), 80);
+}
