@@ -67,6 +67,16 @@ pub fn problems() -> Vec<Problem> {
             run: problems::f_a1::run,
         },
         Problem {
+            id: problems::f_a12::ID,
+            title: "Grady–Kipp flaw damage around a circular hole (Fuller A.12)",
+            run: problems::f_a12::run,
+        },
+        Problem {
+            id: problems::f_a13::ID,
+            title: "Peerlings softening damage in a waisted bar (Fuller A.13)",
+            run: problems::f_a13::run,
+        },
+        Problem {
             id: "R-C3",
             title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
             run: stability::run,

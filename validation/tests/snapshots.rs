@@ -8,9 +8,13 @@
 //! - R-P3 gradient approximations to the 4 decimals printed in the thesis tables;
 //! - F-A1 σ_yy(x, 0)/σ∞ to 0.01 (a third of a per cent of the peak 3, well inside the 0.3
 //!   criterion; the time average over three wave transits makes it steady at that level).
+//! - F-A12 / F-A13 (quick tier) damaged-area fractions to 1e-3 (about one particle of the
+//!   835–1521 particle quick lattices: a particle crossing D = 0.5 is a real change, while
+//!   round-off never moves a fraction by a whole particle unless D sits at 0.5 to the last
+//!   bit).
 
 use std::fmt::Write;
-use tlsph_validation::problems::{f_a1, r_p2, r_p3, r_p4};
+use tlsph_validation::problems::{f_a1, f_a12, f_a13, fuller, r_p2, r_p3, r_p4};
 use tlsph_validation::variants::{sample_series, ALGORITHM_2, ALGORITHM_3};
 
 fn round(x: f64, quantum: f64) -> f64 {
@@ -112,4 +116,28 @@ fn f_a1_quick_hole_profile() {
     )
     .unwrap();
     insta::assert_snapshot!(csv);
+}
+
+fn damage_fractions(run: &fuller::DamageRun, end: f64, step: f64) -> String {
+    let mut csv = String::from("time,damaged_fraction,failed_fraction\n");
+    let mut t = 0.0;
+    while t <= end + 1e-9 {
+        let d = fuller::sample_at(&run.damaged_fraction, t);
+        let f = fuller::sample_at(&run.failed_fraction, t);
+        writeln!(csv, "{t:.0},{:.3},{:.3}", round(d, 1e-3), round(f, 1e-3)).unwrap();
+        t += step;
+    }
+    csv
+}
+
+#[test]
+fn f_a13_quick_damaged_area_fraction() {
+    let run = f_a13::simulate(f_a13::QUICK_SPACING);
+    insta::assert_snapshot!(damage_fractions(&run, f_a13::END_TIME, 50.0));
+}
+
+#[test]
+fn f_a12_quick_damaged_area_fraction() {
+    let run = f_a12::simulate(f_a12::QUICK_SPACING);
+    insta::assert_snapshot!(damage_fractions(&run, f_a12::END_TIME, 25.0));
 }

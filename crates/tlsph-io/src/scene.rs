@@ -407,10 +407,10 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         });
     }
     if stress_update == StressUpdate::GreenLagrange {
-        if let Some(b) = bodies
-            .iter()
-            .find(|b| materials[b.material].model.has_plastic_strain())
-        {
+        if let Some(b) = bodies.iter().find(|b| {
+            let model = &materials[b.material].model;
+            model.has_plastic_strain() || matches!(model, MaterialModel::ElasticDamage(_))
+        }) {
             let span = sim
                 .stress_update
                 .as_ref()
@@ -419,7 +419,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 &span,
                 "simulation.stress_update",
                 format!(
-                    "body `{}` is elastic-plastic, which needs \"jaumann-rate\" (the Green-Lagrange path is hyperelastic only)",
+                    "body `{}` is elastic-plastic or damaged, which needs \"jaumann-rate\" (the Green-Lagrange path is hyperelastic only)",
                     b.name
                 ),
             ));
@@ -1076,14 +1076,12 @@ fn build_probe<const D: usize>(
         let parsed: ParticleField = f
             .parse()
             .map_err(|e: String| ctx.error(&t.fields.span(), &field("fields"), e))?;
-        if parsed == ParticleField::Damage
-            && !matches!(&materials[body.material].model, MaterialModel::ElasticPlastic(m) if m.failure.is_some())
-        {
+        if parsed == ParticleField::Damage && !materials[body.material].model.has_damage() {
             return Err(ctx.error(
                 &t.fields.span(),
                 &field("fields"),
                 format!(
-                    "`damage` needs a failure model in the material of body `{}`",
+                    "`damage` needs a failure or damage model in the material of body `{}`",
                     body.name
                 ),
             ));

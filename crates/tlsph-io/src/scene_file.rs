@@ -143,6 +143,20 @@ pub(crate) struct MaterialTable {
     pub min_pressure: Option<Spanned<f64>>,
     pub eos: Option<Spanned<EosTable>>,
     pub failure: Option<Spanned<FailureTable>>,
+    // linear-elastic only
+    pub damage: Option<Spanned<DamageTable>>,
+}
+
+/// `damage = { model = "...", ... }` of a linear-elastic material.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct DamageTable {
+    pub model: String,
+    pub kappa0: Option<f64>,
+    pub kappa_c: Option<f64>,
+    pub m: Option<f64>,
+    pub k: Option<f64>,
+    pub seed: Option<i64>,
 }
 
 /// `failure = { model = "...", ... }` of a plastic material.

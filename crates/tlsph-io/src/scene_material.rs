@@ -2,23 +2,27 @@
 //! material models with every parameter checked and located (numerics.md §8).
 
 use crate::scene::{Context, SceneError};
-use crate::scene_file::{EosTable, FailureTable, MaterialTable};
+use crate::scene_file::{DamageTable, EosTable, FailureTable, MaterialTable};
 use std::ops::Range;
 use tlsph_materials::eos::MieGruneisenParameters;
 use tlsph_materials::strength::JohnsonCookStrengthParameters;
 use tlsph_materials::{
-    EquationOfState, JohnsonCookFailure, JohnsonCookStrength, LinearElastic, LinearEos,
-    MaterialError, MaxPlasticStrainFailure, MaxStressFailure, MieGruneisen, PolynomialEos,
-    VonMisesPlasticity,
+    EquationOfState, GradyKipp, JohnsonCookFailure, JohnsonCookStrength, LinearElastic, LinearEos,
+    MaterialError, MaxPlasticStrainFailure, MaxStressFailure, MieGruneisen, PeerlingsSoftening,
+    PolynomialEos, VonMisesPlasticity,
 };
 use tlsph_solver::{
-    ElasticPlastic, FailureModel, MaterialModel, PressureModel, StrengthModel, Thermal,
+    DamageModel, ElasticDamage, ElasticPlastic, FailureModel, MaterialModel, PressureModel,
+    StrengthModel, Thermal,
 };
 use toml::Spanned;
 
 /// Material models and the keys each accepts beyond `name`, `model` and `density`.
 const MODELS: [(&str, &[&str]); 3] = [
-    ("linear-elastic", &["youngs_modulus", "poisson_ratio"]),
+    (
+        "linear-elastic",
+        &["youngs_modulus", "poisson_ratio", "damage"],
+    ),
     (
         "elastic-plastic",
         &[
@@ -86,6 +90,7 @@ fn given_keys(m: &MaterialTable) -> Vec<(&'static str, Range<usize>)> {
     push("min_pressure", f(&m.min_pressure));
     push("eos", m.eos.as_ref().map(|x| x.span()));
     push("failure", m.failure.as_ref().map(|x| x.span()));
+    push("damage", m.damage.as_ref().map(|x| x.span()));
     keys
 }
 
@@ -144,7 +149,13 @@ pub(crate) fn material_model(
     let nu = need(&m.poisson_ratio, "poisson_ratio")?;
     let elastic = LinearElastic::new(e.0, nu.0).map_err(locate)?;
     if model_name == "linear-elastic" {
-        return Ok(MaterialModel::LinearElastic(elastic));
+        return Ok(match &m.damage {
+            None => MaterialModel::LinearElastic(elastic),
+            Some(t) => MaterialModel::ElasticDamage(ElasticDamage {
+                elastic,
+                damage: damage(ctx, t, field)?,
+            }),
+        });
     }
     let optional = |v: &Option<Spanned<f64>>| v.as_ref().map(|x| *x.get_ref());
     let strength = if model_name == "elastic-plastic" {
@@ -339,6 +350,77 @@ fn failure(
         other => Err(err(
             "model",
             format!("unknown failure model `{other}`; available: johnson-cook, max-plastic-strain, max-principal-stress"),
+        )),
+    }
+}
+
+/// Flaw seed of Grady–Kipp when a scene gives none (numerics.md §9.2: fixed seed; documented
+/// in docs/scene-format.md).
+pub const DEFAULT_FLAW_SEED: u64 = 1;
+
+/// `damage = { model = "peerlings", kappa0, kappa_c }` or
+/// `{ model = "grady-kipp", m, k, seed }` of a linear-elastic material (numerics.md §9.1–9.2).
+fn damage(
+    ctx: &Context<'_>,
+    t: &Spanned<DamageTable>,
+    field: &dyn Fn(&str) -> String,
+) -> Result<DamageModel, SceneError> {
+    let span = t.span();
+    let d = t.get_ref();
+    let err =
+        |key: &str, message: String| ctx.error(&span, &field(&format!("damage.{key}")), message);
+    let locate = |e: MaterialError| {
+        err(
+            e.parameter,
+            format!("{} is not allowed: must be {}", e.value, e.expected),
+        )
+    };
+    let only = |allowed: &[&str]| -> Result<(), SceneError> {
+        let given = [
+            ("kappa0", d.kappa0.is_some()),
+            ("kappa_c", d.kappa_c.is_some()),
+            ("m", d.m.is_some()),
+            ("k", d.k.is_some()),
+            ("seed", d.seed.is_some()),
+        ];
+        for (key, present) in given {
+            if present && !allowed.contains(&key) {
+                return Err(err(
+                    key,
+                    format!(
+                        "is not a parameter of damage model `{}` (its keys: {})",
+                        d.model,
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    };
+    let need = |v: Option<f64>, key: &str| {
+        v.ok_or_else(|| err(key, format!("is required by damage model `{}`", d.model)))
+    };
+    match d.model.as_str() {
+        "peerlings" => {
+            only(&["kappa0", "kappa_c"])?;
+            let law =
+                PeerlingsSoftening::new(need(d.kappa0, "kappa0")?, need(d.kappa_c, "kappa_c")?)
+                    .map_err(locate)?;
+            Ok(DamageModel::Peerlings(law))
+        }
+        "grady-kipp" => {
+            only(&["m", "k", "seed"])?;
+            let model = GradyKipp::new(need(d.m, "m")?, need(d.k, "k")?).map_err(locate)?;
+            let seed = match d.seed {
+                None => DEFAULT_FLAW_SEED,
+                Some(s) => u64::try_from(s)
+                    .map_err(|_| err("seed", format!("must be an integer ≥ 0, got {s}")))?,
+            };
+            Ok(DamageModel::GradyKipp { model, seed })
+        }
+        other => Err(err(
+            "model",
+            format!("unknown damage model `{other}`; available: peerlings, grady-kipp"),
         )),
     }
 }

@@ -29,7 +29,8 @@ pub enum ParticleField {
     PlasticStrain,
     /// Temperature \[K\] (bodies with adiabatic heating only).
     Temperature,
-    /// Damage D (Johnson–Cook) or 1 once failed; 0 in bodies without a failure model.
+    /// Damage D (Johnson–Cook, Peerlings, Grady–Kipp) or 1 once failed; 0 in bodies without a
+    /// failure or damage model.
     Damage,
 }
 

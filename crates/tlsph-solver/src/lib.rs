@@ -11,6 +11,7 @@
 //! → kick v.
 
 mod bonds;
+mod damage;
 mod diagnostics;
 mod effects;
 mod error;
@@ -28,9 +29,10 @@ pub use diagnostics::Diagnostics;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
-    ElasticPlastic, FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
-    PressureModel, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal,
+    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, DamageModel,
+    EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
+    MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
+    StressUpdate, SymmetryPlane, Thermal,
     WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};

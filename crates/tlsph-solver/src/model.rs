@@ -3,8 +3,8 @@
 
 use tlsph_kernels::KernelKind;
 use tlsph_materials::{
-    EquationOfState, JohnsonCookFailure, JohnsonCookStrength, LinearElastic,
-    MaxPlasticStrainFailure, MaxStressFailure, VonMisesPlasticity,
+    EquationOfState, GradyKipp, JohnsonCookFailure, JohnsonCookStrength, LinearElastic,
+    MaxPlasticStrainFailure, MaxStressFailure, PeerlingsSoftening, VonMisesPlasticity,
 };
 use tlsph_math::Vector;
 
@@ -84,6 +84,35 @@ pub enum MaterialModel {
     /// or Johnson–Cook return map, pressure from the bulk modulus or an equation of state
     /// (numerics.md §8.3–8.5, §8.7–8.9).
     ElasticPlastic(ElasticPlastic),
+    /// Linear elasticity (Jaumann rate) with a softening damage law (numerics.md §9.1–9.3):
+    /// the tensile principal part of the elastic stress is scaled by (1 − D); D = 1 fails the
+    /// particle. A separate variant, so undamaged elastic bodies keep their own loop.
+    ElasticDamage(ElasticDamage),
+}
+
+/// Damage law of an [`ElasticDamage`] material (numerics.md §9.1–9.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DamageModel {
+    /// Peerlings linear softening D(κ), κ = max over history of the largest principal Hencky
+    /// strain ln λ_max (numerics.md §9.1; F 5.3–5.4).
+    Peerlings(PeerlingsSoftening),
+    /// Grady–Kipp flaws with Benz–Asphaug growth (numerics.md §9.2; F §5.3.2).
+    GradyKipp {
+        /// Weibull m and k (k per unit body measure in the model's length unit).
+        model: GradyKipp,
+        /// Seed of the SplitMix64 generator that assigns flaws to particles (one draw
+        /// sequence per body, seeded identically).
+        seed: u64,
+    },
+}
+
+/// A linear-elastic material that softens by damage (numerics.md §8.1 + §9.1–9.3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElasticDamage {
+    /// Elastic constants of the undamaged material.
+    pub elastic: LinearElastic,
+    /// Damage law.
+    pub damage: DamageModel,
 }
 
 /// Deviatoric strength law (numerics.md §8.4–8.5).
@@ -172,6 +201,7 @@ impl MaterialModel {
     pub fn longitudinal_modulus(&self) -> f64 {
         match self {
             MaterialModel::LinearElastic(m) => m.longitudinal_modulus(),
+            MaterialModel::ElasticDamage(m) => m.elastic.longitudinal_modulus(),
             MaterialModel::ElasticPlastic(m) => {
                 m.bulk_modulus() + 4.0 / 3.0 * m.elastic.shear_modulus()
             }
@@ -181,6 +211,16 @@ impl MaterialModel {
     /// Whether the model carries an effective plastic strain.
     pub fn has_plastic_strain(&self) -> bool {
         matches!(self, MaterialModel::ElasticPlastic(_))
+    }
+
+    /// Whether particles of this material can fail (a failure or damage model is declared) and
+    /// so carry a damage field (numerics.md §9.3).
+    pub fn has_damage(&self) -> bool {
+        match self {
+            MaterialModel::LinearElastic(_) => false,
+            MaterialModel::ElasticPlastic(m) => m.failure.is_some(),
+            MaterialModel::ElasticDamage(_) => true,
+        }
     }
 
     /// Whether the model carries a temperature.

@@ -51,7 +51,8 @@ impl PlasticState {
                     ])
                 }
             },
-            crate::model::MaterialModel::LinearElastic(_) => PlasticState::None,
+            crate::model::MaterialModel::LinearElastic(_)
+            | crate::model::MaterialModel::ElasticDamage(_) => PlasticState::None,
         }
     }
 

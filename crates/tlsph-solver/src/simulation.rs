@@ -2,6 +2,7 @@
 //! the state for probes and diagnostics.
 
 use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
+use crate::damage::{update_damaged_elastic, DamageState};
 use crate::diagnostics::Diagnostics;
 use crate::effects::{
     BookedEffect, EffectContext, HourglassControl, MonaghanArtificialStress, MonaghanViscosity,
@@ -105,6 +106,8 @@ pub struct Simulation<const D: usize> {
     failed_count: usize,
     /// Plastic state per body (empty for elastic bodies).
     plastic: Vec<PlasticState>,
+    /// Damage state per body (`DamageState::None` unless its material declares damage).
+    damage: Vec<DamageState>,
     /// Declared effects with their booked energies (empty when none is declared).
     effects: Vec<BookedEffect<D>>,
     /// Accelerations of one effect (allocated only when effects are declared).
@@ -251,9 +254,33 @@ impl<const D: usize> Simulation<D> {
             .iter()
             .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
             .collect();
-        let any_failure = bodies.iter().any(|b| {
-            matches!(&model.materials[b.material].model, MaterialModel::ElasticPlastic(m) if m.failure.is_some())
-        });
+        let damage = bodies
+            .iter()
+            .map(|b| {
+                DamageState::for_material(
+                    &model.materials[b.material].model,
+                    &particles.volumes0[b.range.clone()],
+                )
+            })
+            .collect();
+        if config.stress_update == StressUpdate::GreenLagrange {
+            if let Some(m) = model
+                .materials
+                .iter()
+                .find(|m| matches!(m.model, MaterialModel::ElasticDamage(_)))
+            {
+                return Err(SetupError::InvalidConfig {
+                    field: "stress_update",
+                    message: format!(
+                        "material `{}` has a damage model, which needs stress_update = \"jaumann-rate\"",
+                        m.name
+                    ),
+                });
+            }
+        }
+        let any_failure = bodies
+            .iter()
+            .any(|b| model.materials[b.material].model.has_damage());
         if any_failure && !planes.is_empty() {
             return Err(SetupError::InvalidConfig {
                 field: "symmetry_plane",
@@ -347,6 +374,7 @@ impl<const D: usize> Simulation<D> {
             bonds,
             prescribed,
             plastic,
+            damage,
             correction,
             time: 0.0,
             steps_done: 0,
@@ -423,6 +451,15 @@ impl<const D: usize> Simulation<D> {
                     viscosity,
                     particles,
                     &mut self.plastic[b],
+                ),
+                // Rejected at setup for the Green–Lagrange path.
+                (MaterialModel::ElasticDamage(m), _) => update_damaged_elastic(
+                    m,
+                    &constitutive,
+                    viscosity,
+                    info.spacing,
+                    particles,
+                    &mut self.damage[b],
                 ),
             }
         }
@@ -544,6 +581,7 @@ impl<const D: usize> Simulation<D> {
                 self.plastic[b]
                     .take_newly_failed()
                     .into_iter()
+                    .chain(self.damage[b].take_newly_failed())
                     .map(|k| info.range.start + k),
             );
         }
@@ -677,7 +715,7 @@ impl<const D: usize> Simulation<D> {
         self.failed_count
     }
 
-    /// Whether any body has a failure model (and so a damage field).
+    /// Whether any body has a failure or damage model (and so a damage field).
     pub fn has_failure(&self) -> bool {
         !self.removed.is_empty()
     }
@@ -964,7 +1002,10 @@ impl<const D: usize> Simulation<D> {
             ParticleField::Damage => {
                 let b = self.body_of(i);
                 let k = i - self.bodies[b].range.start;
-                self.plastic[b].damage(k).unwrap_or(0.0)
+                self.plastic[b]
+                    .damage(k)
+                    .or_else(|| self.damage[b].damage(k))
+                    .unwrap_or(0.0)
             }
             ParticleField::Temperature => {
                 let b = self.body_of(i);
@@ -1351,6 +1392,7 @@ fn build_effects<const D: usize>(
             .map(|b| match &model.materials[b.material].model {
                 MaterialModel::LinearElastic(m) => m.youngs_modulus(),
                 MaterialModel::ElasticPlastic(m) => m.elastic.youngs_modulus(),
+                MaterialModel::ElasticDamage(m) => m.elastic.youngs_modulus(),
             })
             .collect();
         let hourglass = HourglassControl::new(

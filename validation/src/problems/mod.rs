@@ -1,6 +1,9 @@
 //! One module per published problem.
 
 pub mod f_a1;
+pub mod f_a12;
+pub mod f_a13;
+pub mod fuller;
 pub mod r_c7x;
 pub mod r_p1;
 pub mod r_p2;

@@ -2,6 +2,7 @@
 //! and failure reporting.
 
 mod allocation;
+mod damage;
 mod effects;
 mod long_runs;
 mod plasticity;

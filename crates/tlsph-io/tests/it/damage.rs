@@ -1,0 +1,201 @@
+//! `damage = { ... }` on linear-elastic materials (numerics.md §9.1–9.2): parsing, the default
+//! flaw seed, and located errors naming the field.
+
+use super::{error_of, line_of};
+use tlsph_io::{parse_scene, DimensionModel};
+use tlsph_solver::{DamageModel, MaterialModel};
+
+const DAMAGED: &str = r#"
+[simulation]
+dimension = 2
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.5
+cfl = 0.3
+end_time = 10.0
+
+[[material]]
+name = "bar"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+damage = { model = "peerlings", kappa0 = 0.001, kappa_c = 0.01 }
+
+[[material]]
+name = "plate"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+damage = { model = "grady-kipp", m = 8.5, k = 1.4e19, seed = 42 }
+
+[[body]]
+name = "bar"
+material = "bar"
+spacing = 1.0
+box = { min = [0.0, 0.0], max = [4.0, 10.0] }
+
+[[body]]
+name = "plate"
+material = "plate"
+spacing = 1.0
+box = { min = [10.0, 0.0], max = [18.0, 8.0] }
+
+[[probe]]
+name = "middle"
+body = "bar"
+at = [2.0, 5.0]
+fields = ["damage", "stress_yy"]
+interval = 1.0
+"#;
+
+#[test]
+fn peerlings_and_grady_kipp_parse_with_their_parameters() {
+    let scene = parse_scene(DAMAGED, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticDamage(bar) = &model.materials[0].model else {
+        panic!("bar is damaged elastic")
+    };
+    let DamageModel::Peerlings(p) = bar.damage else {
+        panic!("Peerlings")
+    };
+    assert_eq!((p.kappa0(), p.kappa_c()), (0.001, 0.01));
+    let MaterialModel::ElasticDamage(plate) = &model.materials[1].model else {
+        panic!("plate is damaged elastic")
+    };
+    let DamageModel::GradyKipp { model: gk, seed } = plate.damage else {
+        panic!("Grady–Kipp")
+    };
+    assert_eq!((gk.m(), gk.k(), seed), (8.5, 1.4e19, 42));
+    // Without `seed` the documented default applies.
+    let default = DAMAGED.replace(", seed = 42", "");
+    let scene = parse_scene(&default, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticDamage(plate) = &model.materials[1].model else {
+        panic!("damaged")
+    };
+    assert!(matches!(
+        plate.damage,
+        DamageModel::GradyKipp { seed: 1, .. }
+    ));
+    // Without `damage` the material stays plain linear-elastic (no damage state, no cost).
+    let plain = DAMAGED.replace(
+        "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }",
+        "",
+    );
+    let plain = plain.replace("fields = [\"damage\", ", "fields = [");
+    let scene = parse_scene(&plain, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert!(matches!(
+        model.materials[0].model,
+        MaterialModel::LinearElastic(_)
+    ));
+}
+
+#[test]
+fn damage_errors_name_the_field_and_line() {
+    let peerlings = "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }";
+    let grady = "damage = { model = \"grady-kipp\", m = 8.5, k = 1.4e19, seed = 42 }";
+    // (replace, with, field, message fragment)
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            peerlings,
+            "damage = { model = \"peerlings\", kappa0 = 0.0, kappa_c = 0.01 }",
+            "material[bar].damage.kappa0",
+            "greater than 0",
+        ),
+        (
+            peerlings,
+            "damage = { model = \"peerlings\", kappa0 = 0.01, kappa_c = 0.005 }",
+            "material[bar].damage.kappa_c",
+            "greater than kappa0",
+        ),
+        (
+            peerlings,
+            "damage = { model = \"peerlings\", kappa0 = 0.001 }",
+            "material[bar].damage.kappa_c",
+            "is required by damage model `peerlings`",
+        ),
+        (
+            peerlings,
+            "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01, m = 2.0 }",
+            "material[bar].damage.m",
+            "not a parameter of damage model `peerlings`",
+        ),
+        (
+            peerlings,
+            "damage = { model = \"mazars\" }",
+            "material[bar].damage.model",
+            "unknown damage model `mazars`",
+        ),
+        (
+            grady,
+            "damage = { model = \"grady-kipp\", m = -8.5, k = 1.4e19 }",
+            "material[plate].damage.m",
+            "greater than 0",
+        ),
+        (
+            grady,
+            "damage = { model = \"grady-kipp\", m = 8.5, k = 0.0 }",
+            "material[plate].damage.k",
+            "greater than 0",
+        ),
+        (
+            grady,
+            "damage = { model = \"grady-kipp\", m = 8.5, k = 1.4e19, seed = -3 }",
+            "material[plate].damage.seed",
+            "integer ≥ 0",
+        ),
+        (
+            grady,
+            "damage = { model = \"grady-kipp\", k = 1.4e19 }",
+            "material[plate].damage.m",
+            "is required",
+        ),
+    ];
+    for (from, to, field, fragment) in cases {
+        let text = DAMAGED.replace(from, to);
+        assert_ne!(text, DAMAGED, "case {field} did not change the scene");
+        let err = error_of(&text);
+        assert_eq!(err.field, *field, "{err}");
+        assert!(err.message.contains(fragment), "{field}: {err}");
+        assert_eq!(err.line, Some(line_of(&text, to)), "{field}: {err}");
+    }
+}
+
+#[test]
+fn damage_is_rejected_where_it_cannot_act() {
+    // On an elastic-plastic material (not supported yet): a "not a parameter" error.
+    let text = DAMAGED.replacen(
+        "model = \"linear-elastic\"",
+        "model = \"elastic-plastic\"\nyield_stress = 0.02",
+        1,
+    );
+    let err = error_of(&text);
+    assert_eq!(err.field, "material[bar].damage");
+    assert!(err
+        .message
+        .contains("not a parameter of model `elastic-plastic`"));
+    // With the Green–Lagrange update (the damaged stress is the Jaumann-rate one).
+    let text = DAMAGED.replace(
+        "kernel = \"cubic-spline\"",
+        "stress_update = \"green-lagrange\"\nkernel = \"cubic-spline\"",
+    );
+    let err = error_of(&text);
+    assert_eq!(err.field, "simulation.stress_update");
+    assert!(err.message.contains("damaged"), "{err}");
+    // A damage probe on a body without damage.
+    let text = DAMAGED.replace(
+        "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }",
+        "",
+    );
+    let err = error_of(&text);
+    assert_eq!(err.field, "probe[middle].fields");
+}

@@ -1,0 +1,332 @@
+//! Damaged elastic bodies (numerics.md §9.1–9.3): the solver's Peerlings and Grady–Kipp
+//! wiring against the laws on homogeneous patches driven through a prescribed F(t), the
+//! failure path, and determinism.
+//!
+//! Driving: with corrected gradients every particle of an affinely displaced patch sees the
+//! exact F, so the whole patch is one material point. Its effective (undamaged) stress is the
+//! Jaumann-rate integral Σ M Δf/f^{n−½}, which differs from M ln f (the Hencky strain the
+//! damage law reads) by ε Δf²/12 summed over the path: 3·10⁻¹⁴ for the 3000 steps to
+//! ε = 0.012 used below, so 1e-12 is a real check of the law, not of the time integration.
+
+use super::{lattice, model, Setup};
+use tlsph_materials::{GradyKipp, LinearElastic, PeerlingsSoftening};
+use tlsph_math::Vector;
+use tlsph_solver::{
+    DamageModel, ElasticDamage, MaterialModel, Model, ParticleField, SetupError, Simulation,
+    StressUpdate,
+};
+
+const KAPPA0: f64 = 0.001;
+const KAPPA_C: f64 = 0.01;
+
+/// F-A13 unit law (problems.md F-A13 `[A]`): σ = Eε, E κ0 (κc − ε)/(κc − κ0), then 0.
+fn peerlings_uniaxial(e: f64, strain: f64) -> f64 {
+    if strain <= KAPPA0 {
+        e * strain
+    } else if strain < KAPPA_C {
+        e * KAPPA0 * (KAPPA_C - strain) / (KAPPA_C - KAPPA0)
+    } else {
+        0.0
+    }
+}
+
+fn damaged<const D: usize>(
+    positions: Vec<Vector<D>>,
+    dx: f64,
+    elastic: LinearElastic,
+    damage: DamageModel,
+    end_time: f64,
+) -> Model<D> {
+    let mut m = model(
+        positions,
+        dx,
+        |_| Vector::<D>::zeros(),
+        Setup {
+            end_time,
+            ..Setup::default()
+        },
+    );
+    m.materials[0].model = MaterialModel::ElasticDamage(ElasticDamage { elastic, damage });
+    m
+}
+
+/// Drives `sim` so that its displacement becomes u = (f − 1) X_0 along x over one step of the
+/// solver's own Δt (the velocity is chosen so that the drift lands there).
+fn drive_to<const D: usize>(sim: &mut Simulation<D>, positions: &[Vector<D>], from: f64, to: f64) {
+    let own = sim.next_dt();
+    let u = |f: f64| -> Vec<Vector<D>> {
+        positions
+            .iter()
+            .map(|x| {
+                let mut u = Vector::<D>::zeros();
+                u[0] = (f - 1.0) * x[0];
+                u
+            })
+            .collect()
+    };
+    let (now, next) = (u(from), u(to));
+    let v: Vec<Vector<D>> = now.iter().zip(&next).map(|(a, b)| (b - a) / own).collect();
+    sim.set_displacements(&now);
+    sim.set_velocities(&v);
+    sim.step().unwrap();
+}
+
+#[test]
+fn peerlings_patch_follows_the_uniaxial_law_through_the_solver() {
+    // 1D (uniaxial strain) with ν = 0, so the longitudinal modulus M equals E and the patch
+    // is Fuller's single particle in uniaxial tension (problems.md F-A13 unit test).
+    let dx = 1.0;
+    let positions = lattice([12], dx);
+    let elastic = LinearElastic::new(1.0, 0.0).unwrap();
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let m = damaged(
+        positions.clone(),
+        dx,
+        elastic,
+        DamageModel::Peerlings(law),
+        1e9,
+    );
+    let mut sim = Simulation::new(m).unwrap();
+    assert!(sim.has_failure());
+    sim.step().unwrap();
+    let steps = 3000;
+    let target = 0.012f64.exp(); // Hencky strain 0.012 > κc
+    let mut f = 1.0;
+    let (mut softening, mut failed) = (0, 0);
+    for k in 1..=steps {
+        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+        let strain = f.ln();
+        let expected = peerlings_uniaxial(1.0, strain);
+        for i in 0..positions.len() {
+            let sigma = sim.stresses()[i][(0, 0)];
+            assert!(
+                (sigma - expected).abs() < 1e-12,
+                "step {k}, ε = {strain}: σ = {sigma}, law {expected}"
+            );
+        }
+        if strain > KAPPA0 && strain < KAPPA_C {
+            softening += 1;
+        }
+        if sim.failed_particles() == positions.len() {
+            failed += 1;
+            assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
+        }
+    }
+    // Both branches were really visited, and every particle failed once ε ≥ κc.
+    assert!(softening > 2000, "{softening} softening steps");
+    assert!(failed > 100, "{failed} steps after failure");
+    assert_eq!(sim.failed_particles(), positions.len());
+}
+
+#[test]
+fn peerlings_damage_does_not_heal_on_unloading() {
+    // Load to ε = 0.005, unload to 0.003: the history κ keeps D(0.005), so σ = (1 − D)Eε
+    // on the elastic unloading branch (numerics.md §9.1 `[C]`).
+    let dx = 1.0;
+    let positions = lattice([8], dx);
+    let elastic = LinearElastic::new(1.0, 0.0).unwrap();
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let mut sim = Simulation::new(damaged(
+        positions.clone(),
+        dx,
+        elastic,
+        DamageModel::Peerlings(law),
+        1e9,
+    ))
+    .unwrap();
+    sim.step().unwrap();
+    let (peak, back) = (0.005f64.exp(), 0.003f64.exp());
+    let mut f = 1.0;
+    for k in 1..=1000 {
+        let next = 1.0 + (peak - 1.0) * k as f64 / 1000.0;
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+    }
+    for k in 1..=400 {
+        let next = peak + (back - peak) * k as f64 / 400.0;
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+    }
+    let d = law.damage(0.005);
+    let expected = (1.0 - d) * 0.003;
+    assert!((sim.stresses()[4][(0, 0)] - expected).abs() < 1e-12);
+    assert!((sim.sample(ParticleField::Damage, 4) - d).abs() < 1e-12);
+}
+
+/// Grady–Kipp patch set-up: 10 × 10 particles, Δx = 1, E = 1, ν = 0.3, ρ = 1; k chosen so that
+/// the first flaw of the body activates at ε_1 = (1/(kV))^{1/m} = 1e-3.
+const GK_M: f64 = 8.5;
+fn gk_k(volume: f64) -> f64 {
+    1e3f64.powf(GK_M) / volume
+}
+
+#[test]
+fn grady_kipp_patch_has_no_damage_below_the_first_flaw_and_grows_by_the_law() {
+    let dx = 1.0;
+    let positions = lattice([10, 10], dx);
+    let n = positions.len();
+    let volume = n as f64 * dx * dx;
+    let elastic = LinearElastic::new(1.0, 0.3).unwrap();
+    let gk = GradyKipp::new(GK_M, gk_k(volume)).unwrap();
+    let seed = 7;
+    let mut sim = Simulation::new(damaged(
+        positions.clone(),
+        dx,
+        elastic,
+        DamageModel::GradyKipp { model: gk, seed },
+        1e9,
+    ))
+    .unwrap();
+    // Independent copy of the flaws (same public seeding) and of the law's constants.
+    let flaws = gk.seed_flaws(n, volume, seed);
+    let first = gk.activation_strain(1, volume);
+    assert!((first - 1e-3).abs() < 1e-15);
+    let (e, m) = (elastic.youngs_modulus(), elastic.longitudinal_modulus());
+    let crack_speed = 0.4 * (m / 1.0f64).sqrt(); // c_g = 0.4 c_l, ρ = 1
+    let radius = 0.5 * dx; // R_s = ½Δx
+                           // Plane strain, F = diag(f, 1): σ1 = σ_xx = M ln f, so ε_eff = M ln f / E.
+    let stretch_for = |eps_eff: f64| (eps_eff * e / m).exp();
+    sim.step().unwrap();
+    // Ramp to 0.98 ε_1: no flaw is active, so nothing may damage.
+    let below = stretch_for(0.98 * first);
+    let mut f = 1.0;
+    for k in 1..=200 {
+        let next = 1.0 + (below - 1.0) * k as f64 / 200.0;
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+        assert!((0..n).all(|i| sim.sample(ParticleField::Damage, i) == 0.0));
+    }
+    // Ramp to ε_eff = 1.85e-3 (a part of the flaws active), then hold.
+    let above = stretch_for(1.85e-3);
+    let mut previous: Vec<f64> = vec![0.0; n];
+    let (mut grown, mut capped) = (0, 0);
+    for k in 1..=40 {
+        let next = if k <= 20 {
+            f + (above - f) / (21 - k) as f64
+        } else {
+            above
+        };
+        let dt = sim.next_dt();
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+        let eps_eff = m * f.ln() / e;
+        for i in 0..n {
+            let d = sim.sample(ParticleField::Damage, i);
+            let active = flaws[i].iter().filter(|&&t| t <= eps_eff).count();
+            let cap = if flaws[i].is_empty() {
+                0.0
+            } else {
+                active as f64 / flaws[i].len() as f64
+            };
+            let d_old = previous[i];
+            if d_old >= 1.0 || active == 0 {
+                assert_eq!(d, d_old, "particle {i}: damage without active flaws");
+            } else if d < cap {
+                // Uncapped growth: Δ(D^{1/3}) = Δt n_act c_g / R_s exactly.
+                let growth = d.cbrt() - d_old.cbrt();
+                let law = dt * active as f64 * crack_speed / radius;
+                assert!(
+                    (growth - law).abs() < 1e-12 * law,
+                    "particle {i}: ΔD^(1/3) = {growth}, law {law}"
+                );
+                grown += 1;
+            } else {
+                assert!(
+                    d == cap.max(d_old) || (cap >= 1.0 && d == 1.0),
+                    "particle {i}: D = {d}, cap {cap}"
+                );
+                capped += 1;
+            }
+            previous[i] = d;
+        }
+    }
+    assert!(grown > 10 && capped > 10, "grown {grown}, capped {capped}");
+    // A particle whose flaws are all active reaches D = 1 and fails (numerics.md §9.3).
+    let all_active = (0..n)
+        .filter(|&i| !flaws[i].is_empty() && flaws[i].iter().all(|&t| t <= m * f.ln() / e))
+        .count();
+    assert!(all_active > 0);
+    assert_eq!(sim.failed_particles(), all_active);
+}
+
+/// A 2D bar pulled apart at both ends until Grady–Kipp damage fails particles; returns the
+/// damage field and stresses.
+fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>, usize) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let dx = 1.0;
+        let positions = lattice([30, 8], dx);
+        let n = positions.len();
+        let volume = n as f64;
+        let elastic = LinearElastic::new(1.0, 0.3).unwrap();
+        let gk = GradyKipp::new(GK_M, gk_k(volume)).unwrap();
+        let mut m = damaged(
+            positions.clone(),
+            dx,
+            elastic,
+            DamageModel::GradyKipp { model: gk, seed },
+            120.0,
+        );
+        let ends = |left: bool| -> Vec<usize> {
+            (0..n)
+                .filter(|&i| (positions[i][0] < 1.0) == left && (positions[i][0] > 29.0) != left)
+                .collect()
+        };
+        for (name, left, v) in [("left", true, -2e-3), ("right", false, 2e-3)] {
+            m.boundaries.push(tlsph_solver::BoundaryDescription {
+                name: name.into(),
+                body: 0,
+                particles: ends(left),
+                velocity: Vector::<2>::new(v, 0.0),
+                components: [true, false],
+            });
+        }
+        let mut sim = Simulation::new(m).unwrap();
+        sim.run(|_, _| {}).unwrap();
+        let damage = (0..n)
+            .map(|i| sim.sample(ParticleField::Damage, i))
+            .collect();
+        (damage, sim.stresses().to_vec(), sim.failed_particles())
+    })
+}
+
+#[test]
+fn damaged_runs_are_deterministic_and_follow_the_seed() {
+    let (d1, s1, failed) = pulled_bar(11, 1);
+    let (d2, s2, failed2) = pulled_bar(11, 2);
+    // The run really damaged and failed particles ...
+    assert!(failed > 0 && d1.iter().any(|&d| d > 0.0 && d < 1.0));
+    // ... bit-identically for one and two threads with the same seed ...
+    assert_eq!(failed, failed2);
+    assert!(d1.iter().zip(&d2).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(s1.iter().zip(&s2).all(|(a, b)| a
+        .iter()
+        .zip(b.iter())
+        .all(|(x, y)| x.to_bits() == y.to_bits())));
+    // ... and another seed places the flaws elsewhere.
+    let (d3, _, _) = pulled_bar(12, 2);
+    assert!(d1.iter().zip(&d3).any(|(a, b)| a != b));
+}
+
+#[test]
+fn damage_needs_the_jaumann_rate_update() {
+    let dx = 1.0;
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let mut m = damaged(
+        lattice([6], dx),
+        dx,
+        LinearElastic::new(1.0, 0.0).unwrap(),
+        DamageModel::Peerlings(law),
+        1.0,
+    );
+    m.config.stress_update = StressUpdate::GreenLagrange;
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig { field, .. }) => assert_eq!(field, "stress_update"),
+        other => panic!("expected a stress_update error, got {other:?}"),
+    }
+}
