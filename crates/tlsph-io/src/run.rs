@@ -460,6 +460,8 @@ fn write_run_folder(
             s.distances.min_ratio,
             s.distances.max_ratio,
             s.distances.clumping_index,
+            s.distances.min_spacing_ratio,
+            s.distances.max_spacing_ratio,
             s.energy_drift,
         ]
     });
@@ -471,6 +473,8 @@ fn write_run_folder(
             "min_neighbour_ratio",
             "max_neighbour_ratio",
             "clumping_index",
+            "min_spacing_ratio",
+            "max_spacing_ratio",
             "energy_drift",
         ]
         .map(String::from),

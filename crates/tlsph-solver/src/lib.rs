@@ -32,8 +32,7 @@ pub use model::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, DamageModel,
     EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
     MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
-    StressUpdate, SymmetryPlane, Thermal,
-    WallDescription,
+    StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -653,7 +653,8 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Nearest-neighbour distances of the surviving real particles in the current
-    /// configuration, relative to each body's initial spacing (see [`crate::stability`]).
+    /// configuration, relative to each body's initial spacing and to the spacing the local
+    /// deformation predicts (see [`crate::stability`]).
     /// One cell-list search: a diagnostic for output intervals, not part of a step.
     pub fn neighbour_distances(&self) -> NeighbourDistances {
         let n = self.n_particles();
@@ -677,9 +678,15 @@ impl<const D: usize> Simulation<D> {
                 min_ratio: f64::NAN,
                 max_ratio: f64::NAN,
                 clumping_index: f64::NAN,
+                min_spacing_ratio: f64::NAN,
+                max_spacing_ratio: f64::NAN,
             };
         };
-        let ratios: Vec<f64> = alive
+        let stretch: Vec<f64> = alive
+            .par_iter()
+            .map(|&i| smallest_stretch(&p.deformation_gradient[i]))
+            .collect();
+        let spacing_ratios: Vec<f64> = alive
             .par_iter()
             .enumerate()
             .map(|(k, &i)| {
@@ -691,17 +698,26 @@ impl<const D: usize> Simulation<D> {
                 (nearest / spacing[i]).min(cap)
             })
             .collect();
+        let ratios: Vec<f64> = spacing_ratios
+            .iter()
+            .zip(&stretch)
+            .map(|(r, l)| r / l)
+            .collect();
         let count = ratios.len().max(1) as f64;
         let mean = ratios.iter().sum::<f64>() / count;
         let variance = ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / count;
+        let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
         NeighbourDistances {
-            min_ratio: ratios.iter().copied().fold(f64::INFINITY, f64::min),
-            max_ratio: ratios.iter().copied().fold(0.0, f64::max),
+            min_ratio: min(&ratios),
+            max_ratio: max(&ratios),
             clumping_index: if mean > 0.0 {
                 variance.sqrt() / mean
             } else {
                 f64::NAN
             },
+            min_spacing_ratio: min(&spacing_ratios),
+            max_spacing_ratio: max(&spacing_ratios),
         }
     }
 
@@ -1435,6 +1451,25 @@ fn check_updated_lagrangian_effects<const D: usize>(model: &Model<D>) -> Result<
         );
     }
     Ok(())
+}
+
+/// Smallest principal stretch sqrt(min eig FᵀF) of a D×D deformation gradient (NaN for a
+/// non-finite F).
+fn smallest_stretch<const D: usize>(f: &tlsph_math::Tensor<D>) -> f64 {
+    let c = f.transpose() * f;
+    let smallest = match D {
+        1 => c[(0, 0)],
+        2 => {
+            let (a, b, d) = (c[(0, 0)], c[(0, 1)], c[(1, 1)]);
+            let mean = 0.5 * (a + d);
+            mean - (0.25 * (a - d) * (a - d) + b * b).sqrt()
+        }
+        _ => {
+            let c3 = tlsph_math::embed_with_identity(&c);
+            c3.symmetric_eigenvalues().min()
+        }
+    };
+    smallest.max(0.0).sqrt()
 }
 
 /// Index of the first item that satisfies `pred`, searched in parallel by chunks.

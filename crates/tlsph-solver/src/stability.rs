@@ -2,14 +2,20 @@
 //! energy drift sampled during a run, with the first step at which any of them crosses its
 //! threshold (or the state goes non-finite).
 //!
-//! Quantities, per sample (all dimensionless):
-//! - **nearest-neighbour ratio** d_I / Δx_I, with d_I the distance from particle I to the
-//!   nearest other surviving particle in the current configuration and Δx_I its body's initial
-//!   spacing. Its minimum over particles shows clumping (the tensile instability pulls pairs
-//!   together, R §6.1.1, Swegle et al.), its maximum shows voids and numerical fracture (a
-//!   particle with nobody within 2Δx counts as 2).
-//! - **clumping index**: the coefficient of variation std(d)/mean(d) over particles; 0 on
-//!   any uniformly deformed lattice, large once particles pair up.
+//! Quantities, per sample (all dimensionless), with d_I the distance from particle I to the
+//! nearest other surviving particle in the current configuration and Δx_I its body's initial
+//! spacing:
+//! - **spacing ratio** d_I / Δx_I: the plain measure, reported as its extremes;
+//! - **nearest-neighbour ratio** d_I / (λ_min,I Δx_I), with λ_min,I the smallest principal
+//!   stretch of the particle's deformation gradient F_I: the nearest neighbour of a lattice
+//!   deformed by F sits λ_min Δx away, so this ratio is 1 under any smooth deformation, however
+//!   large, and departs from 1 only where particles move differently from their neighbourhood.
+//!   Its minimum shows clumping (the tensile instability pulls pairs together, R §6.1.1, Swegle
+//!   et al.), its maximum voids and numerical fracture (nobody within 2Δx counts as 2/λ_min).
+//!   The thresholds apply to this ratio, so a Taylor bar's large plastic compression is not
+//!   mistaken for clumping.
+//! - **clumping index**: the coefficient of variation std/mean of the nearest-neighbour ratio
+//!   over particles; 0 on any smoothly deformed lattice, large once particles pair up.
 //! - **energy drift**: |E − E0| / E_scale with E = kinetic + internal + booked effect energies
 //!   and E_scale = the largest of |E0|, the kinetic and the |internal| energy seen so far
 //!   (a run that starts at rest in a prestressed state has E0 = 0).
@@ -45,12 +51,16 @@ impl Default for StabilityThresholds {
 /// Nearest-neighbour statistics of the current configuration (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NeighbourDistances {
-    /// min_I d_I/Δx_I.
+    /// min_I d_I/(λ_min,I Δx_I).
     pub min_ratio: f64,
-    /// max_I d_I/Δx_I (capped at 2).
+    /// max_I d_I/(λ_min,I Δx_I) (d capped at 2Δx).
     pub max_ratio: f64,
-    /// std(d/Δx) / mean(d/Δx).
+    /// std/mean of d_I/(λ_min,I Δx_I).
     pub clumping_index: f64,
+    /// min_I d_I/Δx_I.
+    pub min_spacing_ratio: f64,
+    /// max_I d_I/Δx_I (capped at 2).
+    pub max_spacing_ratio: f64,
 }
 
 /// One sample of the stability report.

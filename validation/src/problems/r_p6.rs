@@ -8,6 +8,7 @@ use crate::report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
 use std::time::Instant;
 use tlsph_io::particle_map::{MapPoint, ParticleMapSpec};
 use tlsph_io::{parse_scene, DimensionModel};
+use tlsph_solver::stability::{StabilityMonitor, StabilityThresholds};
 use tlsph_solver::{BondMetrics, Model, ParticleField, Simulation};
 
 /// Problem id.
@@ -146,6 +147,8 @@ pub struct TaylorRun {
     pub cost: RunCost,
     /// Run stopped early (message), if it did.
     pub failure: Option<String>,
+    /// Stability report sampled every 0.5 µs (default thresholds).
+    pub stability: StabilityMonitor,
 }
 
 fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
@@ -183,6 +186,7 @@ fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
         },
         cost: RunCost::default(),
         failure: None,
+        stability: StabilityMonitor::new(StabilityThresholds::default()),
     };
     let mut e0 = None;
     let mut ke0 = None;
@@ -196,6 +200,7 @@ fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
         }
         next_sample = t + 0.5e-6;
         let d = s.diagnostics();
+        run.stability.observe_with(s, &d);
         let e = *e0.get_or_insert(d.total_energy());
         let k0 = *ke0.get_or_insert(d.kinetic);
         run.energy_error = run.energy_error.max((d.total_energy() - e).abs() / e);
@@ -210,6 +215,8 @@ fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
         run.min_jacobian = run.min_jacobian.min(min_j);
     });
     if let Err(e) = result {
+        run.stability
+            .observe_breakdown(sim.steps_done(), sim.time());
         run.failure = Some(e.to_string());
     }
     run.cost = RunCost {
@@ -269,6 +276,25 @@ pub fn simulate_2d(spacing: f64, tangent_modulus: f64) -> TaylorRun {
     simulate_2d_with(spacing, tangent_modulus, None)
 }
 
+/// Runs the 2D plane-strain rod with conventional (updated-Lagrangian) SPH (R-P6c), with
+/// Monaghan's artificial viscosity (α, β) if given.
+pub fn simulate_2d_conventional(spacing: f64, viscosity: Option<(f64, f64)>) -> TaylorRun {
+    let mut scene = scene_2d(spacing, TANGENT_MODULUS).replace(
+        "formulation = \"total-lagrangian\"",
+        "formulation = \"updated-lagrangian\"",
+    );
+    if let Some((alpha, beta)) = viscosity {
+        scene.push_str(&format!(
+            "\n[artificial_viscosity]\nalpha = {alpha}\nbeta = {beta}\n"
+        ));
+    }
+    match parse_scene(&scene, "R-P6c 2D scene").map(|s| s.model) {
+        Ok(DimensionModel::Two(m)) => run_model(m, spacing),
+        Ok(_) => unreachable!("2D scene"),
+        Err(e) => panic!("{e}"),
+    }
+}
+
 /// Runs the 2D plane-strain rod, optionally with hourglass control of coefficient α.
 pub fn simulate_2d_with(spacing: f64, tangent_modulus: f64, hourglass: Option<f64>) -> TaylorRun {
     let mut scene = scene_2d(spacing, tangent_modulus);
@@ -293,6 +319,46 @@ pub fn simulate_3d(spacing: f64, quarter: bool) -> TaylorRun {
         Ok(DimensionModel::Three(m)) => run_model(m, spacing),
         Ok(_) => unreachable!("3D scene"),
         Err(e) => panic!("{e}"),
+    }
+}
+
+/// R-P6c: the same rod with conventional SPH (thesis: terminated early by instability). Rows:
+/// the first stability crossing (expected failure: clumping or breakdown before the rod is
+/// at rest); notes: how and when it degrades, with and without artificial viscosity.
+fn conventional_rows(report: &mut ProblemReport, spacing: f64) {
+    let tag = format!("2D dx={:.3} mm conventional SPH", spacing * 1e3);
+    for viscosity in [None, Some((1.0, 2.0))] {
+        let run = simulate_2d_conventional(spacing, viscosity);
+        let label = match viscosity {
+            None => format!("{tag}, no viscosity"),
+            Some((a, b)) => format!("{tag}, viscosity alpha={a} beta={b}"),
+        };
+        let crossing = run.stability.first_crossing.clone();
+        let when = crossing.as_ref().map_or(f64::INFINITY, |c| c.time);
+        if viscosity.is_none() {
+            report.rows.push(
+                ReportRow::with_error(
+                    ID,
+                    &format!(
+                        "{label}: first stability crossing [us] before rest (expected failure, 6c)"
+                    ),
+                    when * 1e6,
+                    END_TIME * 1e6,
+                    if when < END_TIME { 0.0 } else { 1.0 },
+                    0.0,
+                )
+                .with_cost(run.cost),
+            );
+        }
+        let (lo, hi, clumping, drift) = run.stability.extremes();
+        report.notes.push(format!(
+            "R-P6c {label}: first crossing {}; over the run min/max nearest-neighbour ratio {lo:.3}/{hi:.3}, clumping index up to {clumping:.3}, energy drift up to {drift:.1e}; {}; final length {:.3} cm, foot width {:.3} cm, {:.1} s.",
+            crossing.map_or("none".into(), |c| format!("{} = {:.3} at {:.1} µs (step {})", c.quantity, c.value, c.time * 1e6, c.step)),
+            run.failure.as_deref().map_or("ran to 150 µs".into(), |e| format!("stopped: {e}")),
+            run.final_length * 100.0,
+            run.final_diameter * 100.0,
+            run.cost.wall_s,
+        ));
     }
 }
 
@@ -374,11 +440,14 @@ pub fn run(tier: Tier) -> ProblemReport {
             ));
         }
         report.notes.push(format!(
-            "2D plane strain, dx = {:.3} mm: final length {:.3} cm, foot width {:.3} cm, max plastic strain {:.2}, at rest at {:.0} µs, {} particles, {:.1} s.",
-            dx * 1e3, run.final_length * 100.0, run.final_diameter * 100.0, run.max_plastic_strain, run.rest_time * 1e6, c.particles, c.wall_s
+            "2D plane strain, dx = {:.3} mm: final length {:.3} cm, foot width {:.3} cm, max plastic strain {:.2}, at rest at {:.0} µs, {} particles, {:.1} s; stability: min/max nearest-neighbour ratio {:.3}/{:.3}, clumping index up to {:.3}, first crossing {}.",
+            dx * 1e3, run.final_length * 100.0, run.final_diameter * 100.0, run.max_plastic_strain, run.rest_time * 1e6, c.particles, c.wall_s,
+            run.stability.extremes().0, run.stability.extremes().1, run.stability.extremes().2,
+            run.stability.first_crossing.as_ref().map_or("none".into(), |x| format!("{} = {:.3} at {:.1} µs", x.quantity, x.value, x.time * 1e6)),
         ));
         runs.push(run);
     }
+    conventional_rows(&mut report, spacings[0]);
     let finest = &runs[runs.len() - 1];
     report.maps.push((
         format!(

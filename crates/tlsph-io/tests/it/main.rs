@@ -281,7 +281,7 @@ fn every_run_writes_a_stability_report_and_names_the_first_crossing() {
         );
         let csv = fs::read_to_string(dir.join("stability.csv")).unwrap();
         assert!(csv.starts_with(
-            "time,step,min_neighbour_ratio,max_neighbour_ratio,clumping_index,energy_drift\n"
+            "time,step,min_neighbour_ratio,max_neighbour_ratio,clumping_index,min_spacing_ratio,max_spacing_ratio,energy_drift\n"
         ));
         assert_eq!(csv.lines().count(), record.diagnostics.len() + 1);
         let summary: toml::Table = fs::read_to_string(dir.join("summary.toml"))
