@@ -150,6 +150,27 @@ pub struct ProblemReport {
     pub maps: Vec<(String, tlsph_io::particle_map::ParticleMapSpec)>,
 }
 
+impl ProblemReport {
+    /// Adds a row whose criterion is stated for the thesis resolution and is known to fail
+    /// there (an explained deviation): a pass/fail row in the full tier, and in the quick tier
+    /// (CI, coarser lattices) a note with the measured value, so CI tracks regressions of what
+    /// passes while the full tier keeps the deviation visible.
+    pub fn push_full_tier_row(&mut self, tier: Tier, row: ReportRow) {
+        match tier {
+            Tier::Full => self.rows.push(row),
+            Tier::Quick => self.notes.push(format!(
+                "Judged in the full tier only (known deviation at the thesis resolution): {} = {:.4e} (reference {:.4e}, error {:.3e}, tolerance {:.3e}{}).",
+                row.quantity,
+                row.measured,
+                row.reference,
+                row.error,
+                row.tolerance,
+                if row.pass { ", within tolerance here" } else { ", outside here too" }
+            )),
+        }
+    }
+}
+
 /// Root of the `reference-data/` folder of this workspace.
 pub fn reference_data_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
