@@ -180,4 +180,23 @@ fn a_failed_particle_leaves_every_sum_and_the_halves_separate() {
     assert!(v_left < 0.0 && v_right > 0.0, "{v_left} {v_right}");
     let gap = sim.displacements()[99][0] - sim.displacements()[0][0];
     assert!(gap > 0.1, "halves did not separate: {gap}");
+    // The failed particles' internal energy moves from `internal` to its own booked column:
+    // exactly Σ m e over the failed particles, and the total is unchanged by the move.
+    let d = sim.diagnostics();
+    let deleted: f64 = failed
+        .iter()
+        .map(|&i| sim.masses()[i] * sim.internal_energies()[i])
+        .sum();
+    let all: f64 = (0..sim.n_particles())
+        .map(|i| sim.masses()[i] * sim.internal_energies()[i])
+        .sum();
+    let column = d
+        .effect_energies
+        .iter()
+        .find(|(name, _)| name == "deleted_particles")
+        .map(|(_, e)| *e)
+        .expect("a deleted_particles column with a failure model");
+    assert!(deleted > 0.0);
+    assert!((column - deleted).abs() <= 1e-12 * all.abs());
+    assert!((d.internal + column - all).abs() <= 1e-12 * all.abs());
 }
