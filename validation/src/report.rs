@@ -171,6 +171,26 @@ impl ProblemReport {
     }
 }
 
+impl Series {
+    /// The smallest nearest-neighbour ratio of a stability report against time (times scaled
+    /// by `time_scale`, e.g. 1e3 for milliseconds).
+    pub fn min_neighbour_ratio(
+        label: &str,
+        monitor: &tlsph_solver::stability::StabilityMonitor,
+        time_scale: f64,
+    ) -> Self {
+        Self {
+            label: label.into(),
+            points: monitor
+                .samples
+                .iter()
+                .map(|s| (s.time * time_scale, s.distances.min_ratio))
+                .collect(),
+            is_reference: false,
+        }
+    }
+}
+
 /// Root of the `reference-data/` folder of this workspace.
 pub fn reference_data_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

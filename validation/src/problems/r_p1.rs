@@ -337,22 +337,10 @@ pub fn run(tier: Tier) -> ProblemReport {
         title: "R-P1 smallest nearest-neighbour distance / Δx".into(),
         x_label: "time [ms]".into(),
         y_label: "min d/Δx".into(),
-        series: [
-            (&tl, Kernel::TotalLagrangian),
-            (&ul, Kernel::UpdatedLagrangian),
-        ]
-        .iter()
-        .map(|(r, k)| Series {
-            label: k.label().into(),
-            points: r
-                .stability
-                .samples
-                .iter()
-                .map(|s| (s.time * 1e3, s.distances.min_ratio))
-                .collect(),
-            is_reference: false,
-        })
-        .collect(),
+        series: vec![
+            Series::min_neighbour_ratio(Kernel::TotalLagrangian.label(), &tl.stability, 1e3),
+            Series::min_neighbour_ratio(Kernel::UpdatedLagrangian.label(), &ul.stability, 1e3),
+        ],
     });
     report
 }

@@ -304,19 +304,10 @@ pub fn run(tier: Tier) -> ProblemReport {
                         .into(),
                 x_label: "time [µs]".into(),
                 y_label: "min d/Δx".into(),
-                series: [(&tl, "TLSPH"), (&ul, "conventional SPH")]
-                    .iter()
-                    .map(|(r, label)| Series {
-                        label: (*label).into(),
-                        points: r
-                            .stability
-                            .samples
-                            .iter()
-                            .map(|s| (s.time * 1e6, s.distances.min_ratio))
-                            .collect(),
-                        is_reference: false,
-                    })
-                    .collect(),
+                series: vec![
+                    Series::min_neighbour_ratio("TLSPH", &tl.stability, 1e6),
+                    Series::min_neighbour_ratio("conventional SPH", &ul.stability, 1e6),
+                ],
             });
         }
         let (ul_lo, _, ul_clumping, _) = ul.stability.extremes();
