@@ -127,6 +127,17 @@ fn plasticity_needs_the_rate_form() {
 
 #[test]
 fn a_failed_particle_leaves_every_sum_and_the_halves_separate() {
+    // Both formulations: TLSPH rebuilds the survivors' reference gradients, conventional SPH
+    // drops the failed particle from its current pairs.
+    for formulation in [
+        Formulation::TotalLagrangianCorrected,
+        Formulation::UpdatedLagrangian,
+    ] {
+        failed_particle_case(formulation);
+    }
+}
+
+fn failed_particle_case(formulation: Formulation) {
     // A 1D bar whose halves fly apart at ±0.05 c: the centre yields in tension, reaches the
     // failure strain and fails; afterwards no tension crosses the gap, so the halves keep
     // moving apart, momentum stays zero, and the failed particle carries no stress.
@@ -139,7 +150,7 @@ fn a_failed_particle_leaves_every_sum_and_the_halves_separate() {
         dx,
         |x| Vector::<1>::new(if x[0] < 0.5 { -0.05 } else { 0.05 }),
         Setup {
-            formulation: Formulation::TotalLagrangianCorrected,
+            formulation,
             end_time: 3.0,
             ..Setup::default()
         },
