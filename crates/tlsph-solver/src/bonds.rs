@@ -166,6 +166,13 @@ impl<const D: usize> Bonds<D> {
     /// Shepard sum, quotient rule and correction B_I included — together with the reverse
     /// gradients that other particles read from them. Sequential and rare (only when a
     /// particle fails), so results stay deterministic.
+    ///
+    /// With symmetry planes (`mirrors`), a failed particle's mirror images are out of the sums
+    /// too (`removed` flags them): the bond I → ghost(F, M) of every real I with F → ghost(I, M)
+    /// is dropped, and when a survivor P's gradients are rebuilt, the mirrored reverse gradient
+    /// of every bond I → ghost(P, M) follows, G̃_{ghost(P,M), I} = M G̃_{P, ghost(I,M)} (as at
+    /// setup), so a quarter model keeps failing like the full one.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn remove_failed(
         &mut self,
         failed_now: &[usize],
@@ -174,6 +181,7 @@ impl<const D: usize> Bonds<D> {
         volumes0: &[f64],
         kernel_of: impl Fn(usize) -> AnyKernel,
         corrected: bool,
+        mirrors: &impl MirrorMap<D>,
     ) {
         let mut affected = Vec::new();
         for &f in failed_now {
@@ -181,12 +189,17 @@ impl<const D: usize> Bonds<D> {
                 let j = self.neighbours[b] as usize;
                 self.gradient[b] = Vector::zeros();
                 self.reverse_gradient[b] = Vector::zeros();
-                if let Some(back) = self.bond(j, f) {
+                let back = match mirrors.mirror(f, j) {
+                    // j = ghost(i, M): the real i loses its bond to ghost(f, M).
+                    Some((i, image, _)) => self.bond(i, image).map(|back| (i, back)),
+                    None => self.bond(j, f).map(|back| (j, back)),
+                };
+                if let Some((owner, back)) = back {
                     self.gradient[back] = Vector::zeros();
                     self.reverse_gradient[back] = Vector::zeros();
-                }
-                if !removed[j] {
-                    affected.push(j);
+                    if !removed[owner] {
+                        affected.push(owner);
+                    }
                 }
             }
             self.gradient_sum[f] = Vector::zeros();
@@ -211,12 +224,25 @@ impl<const D: usize> Bonds<D> {
                     Some((&a, g)) if a == j => {
                         self.gradient[b] = g * volumes0[j];
                         sum += self.gradient[b];
-                        if let Some(back) = self.bond(j, i) {
-                            self.reverse_gradient[back] = g * volumes0[i];
+                        match mirrors.mirror(i, j) {
+                            Some((owner, image, signs)) => {
+                                if let Some(back) = self.bond(owner, image) {
+                                    self.reverse_gradient[back] =
+                                        g.component_mul(&signs) * volumes0[image];
+                                }
+                            }
+                            None => {
+                                if let Some(back) = self.bond(j, i) {
+                                    self.reverse_gradient[back] = g * volumes0[i];
+                                }
+                            }
                         }
                         next = by_neighbour.next();
                     }
-                    _ => self.gradient[b] = Vector::zeros(),
+                    _ => {
+                        self.gradient[b] = Vector::zeros();
+                        self.reverse_gradient[b] = Vector::zeros();
+                    }
                 }
             }
             self.gradient_sum[i] = sum;
@@ -231,6 +257,13 @@ impl<const D: usize> Bonds<D> {
             .ok()
             .map(|k| r.start + k)
     }
+}
+
+/// Mirror images of symmetry ghosts, as the bond rebuild after failures needs them.
+pub(crate) trait MirrorMap<const D: usize> {
+    /// For a real particle `p` and a neighbour `j`: if `j` is the ghost of real particle `i`
+    /// under reflection M, `Some((i, ghost(p, M), signs of M))`; `None` for a real `j`.
+    fn mirror(&self, p: usize, j: usize) -> Option<(usize, usize, Vector<D>)>;
 }
 
 /// G̃_IJ for all neighbours J of particle `i` (body-local), and whether the correction was

@@ -188,6 +188,8 @@ impl<const D: usize> Simulation<D> {
                 local.global.push(particles.len() - 1);
                 ghosts.parent.push(global_parent);
                 ghosts.signs.push(signs);
+                ghosts.mask.push(mask);
+                ghosts.of.insert((global_parent, mask), particles.len() - 1);
             }
             local.neighbours = build_neighbour_list(&local.positions0, kernel.support_radius())
                 .map_err(|e| SetupError::Neighbours {
@@ -281,12 +283,6 @@ impl<const D: usize> Simulation<D> {
         let any_failure = bodies
             .iter()
             .any(|b| model.materials[b.material].model.has_damage());
-        if any_failure && !planes.is_empty() {
-            return Err(SetupError::InvalidConfig {
-                field: "symmetry_plane",
-                message: "failure models cannot be combined with symmetry planes yet (a failed particle's ghost would keep it in the sums)".into(),
-            });
-        }
         if let Some(v) = model.effects.bulk_viscosity {
             let ok = [v.quadratic, v.linear]
                 .iter()
@@ -591,6 +587,12 @@ impl<const D: usize> Simulation<D> {
         for &i in &newly {
             self.removed[i] = true;
         }
+        // A failed particle's mirror images leave the sums with it.
+        for (k, &parent) in self.ghosts.parent.iter().enumerate() {
+            if self.removed[parent] {
+                self.removed[self.ghosts.first + k] = true;
+            }
+        }
         if let Some(updated) = &mut self.updated {
             updated.mark_stale();
         }
@@ -610,6 +612,7 @@ impl<const D: usize> Simulation<D> {
             &self.particles.volumes0,
             |i| kernels[body_of(i)],
             self.config.formulation == Formulation::TotalLagrangianCorrected,
+            &self.ghosts,
         );
     }
 
@@ -1100,6 +1103,21 @@ struct Ghosts<const D: usize> {
     first: usize,
     parent: Vec<usize>,
     signs: Vec<Vector<D>>,
+    /// Reflection mask of each ghost (bit k: plane k).
+    mask: Vec<u32>,
+    /// Ghost index of (real parent, mask).
+    of: std::collections::HashMap<(usize, u32), usize>,
+}
+
+impl<const D: usize> crate::bonds::MirrorMap<D> for Ghosts<D> {
+    fn mirror(&self, p: usize, j: usize) -> Option<(usize, usize, Vector<D>)> {
+        if self.parent.is_empty() || j < self.first {
+            return None;
+        }
+        let k = j - self.first;
+        let image = *self.of.get(&(p, self.mask[k]))?;
+        Some((self.parent[k], image, self.signs[k]))
+    }
 }
 
 impl<const D: usize> Ghosts<D> {

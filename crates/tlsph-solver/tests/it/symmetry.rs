@@ -109,3 +109,77 @@ fn a_body_across_a_symmetry_plane_is_rejected() {
     let err = Simulation::new(m).unwrap_err();
     assert!(err.to_string().contains("both sides"), "{err}");
 }
+
+#[test]
+fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
+    // The halves x < 0 and x > 0 fly apart at ±0.05 c (mirror-symmetric about both axes):
+    // the two central columns yield, reach the failure strain and fail. With symmetry planes a
+    // failed particle's mirror images must leave every sum with it, and the survivors'
+    // gradients (including the mirrored reverse gradients) must be rebuilt exactly as in the
+    // full model.
+    use tlsph_materials::{LinearElastic, MaxPlasticStrainFailure, VonMisesPlasticity};
+    use tlsph_solver::{
+        ElasticPlastic, FailureModel, MaterialModel, ParticleField, PressureModel, StrengthModel,
+    };
+    let dx = 0.05;
+    let setup = || Setup {
+        formulation: Formulation::TotalLagrangianCorrected,
+        end_time: 1.5,
+        ..Setup::default()
+    };
+    let pull = |x: &Vector<2>| Vector::<2>::new(0.05 * x[0].signum(), 0.0);
+    let material = MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic: LinearElastic::new(0.9, 0.2).unwrap(),
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: None,
+        failure: Some(FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(0.05).unwrap(),
+        )),
+    });
+    let full_positions = centred(10, 4, dx);
+    let quarter_positions: Vec<Vector<2>> = full_positions
+        .iter()
+        .copied()
+        .filter(|x| x[0] > 0.0 && x[1] > 0.0)
+        .collect();
+    let mut full = model(full_positions.clone(), dx, pull, setup());
+    full.materials[0].model = material;
+    let mut quarter = model(quarter_positions.clone(), dx, pull, setup());
+    quarter.materials[0].model = material;
+    quarter.effects.symmetry_planes = vec![
+        SymmetryPlane {
+            axis: 0,
+            position: 0.0,
+        },
+        SymmetryPlane {
+            axis: 1,
+            position: 0.0,
+        },
+    ];
+    let mut a = Simulation::new(full).unwrap();
+    let mut b = Simulation::new(quarter).unwrap();
+    a.run(|_, _| {}).unwrap();
+    b.run(|_, _| {}).unwrap();
+    assert!(b.failed_particles() > 0, "the central column must fail");
+    assert_eq!(a.failed_particles(), 4 * b.failed_particles());
+    let scale = a
+        .displacements()
+        .iter()
+        .map(|u| u.norm())
+        .fold(0.0, f64::max);
+    for (k, x) in quarter_positions.iter().enumerate() {
+        let i = full_positions.iter().position(|y| y == x).unwrap();
+        assert_eq!(
+            a.sample(ParticleField::Damage, i),
+            b.sample(ParticleField::Damage, k),
+            "failure state at {x}"
+        );
+        let diff = (a.displacements()[i] - b.displacements()[k]).norm();
+        assert!(
+            diff < 1e-9 * scale,
+            "particle at {x}: {diff:e} (scale {scale:e})"
+        );
+    }
+}
