@@ -3,7 +3,7 @@
 
 use crate::geometry::{fill_shape, Shape};
 use crate::scene_file::{
-    BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable,
+    BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
 };
 use std::fmt;
 use std::ops::Range;
@@ -13,8 +13,8 @@ use tlsph_math::{Tensor, Vector};
 use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
-    Formulation, MaterialDescription, MaterialModel, Model, ParticleField, SimulationConfig,
-    StressUpdate, SymmetryPlane, WallDescription,
+    Formulation, MaterialDescription, MaterialModel, Model, ParticleField, PressureModel,
+    SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
 };
 use toml::Spanned;
 
@@ -395,6 +395,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 format!("body `{}` is defined twice", body.name),
             ));
         }
+        if stress_update == StressUpdate::GreenLagrange {
+            if let Some(t) = &b.initial_stress {
+                return Err(ctx.error(
+                    &t.span(),
+                    &format!("body[{}].initial_stress", body.name),
+                    "needs stress_update = \"jaumann-rate\" (the Green-Lagrange path computes stress from F alone)".into(),
+                ));
+            }
+        }
         bodies.push(body);
     }
     if bodies.is_empty() {
@@ -761,6 +770,15 @@ fn build_body<const D: usize>(
         }
     }
     apply_cuts(ctx, b, &mut positions, &mut velocities)?;
+    let initial_stress = match &b.initial_stress {
+        Some(t) => Some(initial_stress::<D>(
+            ctx,
+            t,
+            &field("initial_stress"),
+            &materials[material],
+        )?),
+        None => None,
+    };
     let volume = spacing.powi(D as i32);
     Ok(BodyDescription {
         name: name.clone(),
@@ -769,7 +787,56 @@ fn build_body<const D: usize>(
         volumes: vec![volume; positions.len()],
         positions,
         velocities,
+        initial_stress,
     })
+}
+
+/// The symmetric stress of `initial_stress`: finite components; in 1D only the normal ones
+/// (uniaxial strain), in 2D no out-of-plane shear (plane strain); not for materials whose
+/// stress is a function of state (an equation of state or a damage model).
+fn initial_stress<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<StressComponents>,
+    field: &str,
+    material: &MaterialDescription,
+) -> Result<tlsph_math::Tensor3, SceneError> {
+    let c = table.get_ref();
+    let span = table.span();
+    let allowed_shear = |present: bool, needs: usize, name: &str| {
+        if present && D < needs {
+            Err(ctx.error(
+                &span,
+                field,
+                format!("`{name}` is not a stress component of a {D}D scene (1D: xx, yy, zz; 2D: also xy)"),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    allowed_shear(c.xy.is_some(), 2, "xy")?;
+    allowed_shear(c.yz.is_some(), 3, "yz")?;
+    allowed_shear(c.xz.is_some(), 3, "xz")?;
+    let v = |x: Option<f64>| x.unwrap_or(0.0);
+    let (xx, yy, zz, xy, yz, xz) = (v(c.xx), v(c.yy), v(c.zz), v(c.xy), v(c.yz), v(c.xz));
+    if ![xx, yy, zz, xy, yz, xz].iter().all(|x| x.is_finite()) {
+        return Err(ctx.error(&span, field, "components must be finite numbers".into()));
+    }
+    let state_stress = match &material.model {
+        MaterialModel::ElasticPlastic(m) => matches!(m.pressure, PressureModel::Eos(_)),
+        MaterialModel::ElasticDamage(_) => true,
+        MaterialModel::LinearElastic(_) => false,
+    };
+    if state_stress {
+        return Err(ctx.error(
+            &span,
+            field,
+            format!(
+                "material `{}` computes its stress from the current state (an equation of state or a damage model), so an initial stress would be lost",
+                material.name
+            ),
+        ));
+    }
+    Ok(tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz))
 }
 
 /// Removes the lattice points of every `[[body.cut]]` from a filled body (holes, notches):

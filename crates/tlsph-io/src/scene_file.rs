@@ -209,6 +209,20 @@ pub(crate) struct BodyTable {
     /// Holes and notches: `[[body.cut]]` tables whose lattice points are removed.
     #[serde(default)]
     pub cut: Vec<CutTable>,
+    /// Uniform initial Cauchy stress.
+    pub initial_stress: Option<Spanned<StressComponents>>,
+}
+
+/// `initial_stress = { xx = .., yy = .., ... }`: components of a symmetric stress, absent = 0.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct StressComponents {
+    pub xx: Option<f64>,
+    pub yy: Option<f64>,
+    pub zz: Option<f64>,
+    pub xy: Option<f64>,
+    pub yz: Option<f64>,
+    pub xz: Option<f64>,
 }
 
 /// `[[body.cut]]`: a region removed from the body after all its shapes are filled.

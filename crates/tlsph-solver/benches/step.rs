@@ -45,6 +45,7 @@ fn block(n: usize, formulation: Formulation) -> Simulation<3> {
             volumes: vec![dx * dx * dx; positions.len()],
             positions,
             velocities,
+            initial_stress: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

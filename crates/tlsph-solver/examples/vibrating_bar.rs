@@ -49,6 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             volumes: vec![spacing; n],
             positions,
             velocities,
+            initial_stress: None,
         }],
         // Clamp: particle 0 (X = 0) held at zero velocity.
         boundaries: vec![BoundaryDescription {

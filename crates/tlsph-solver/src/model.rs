@@ -256,6 +256,10 @@ pub struct BodyDescription<const D: usize> {
     pub volumes: Vec<f64>,
     /// Initial velocities \[m/s\].
     pub velocities: Vec<Vector<D>>,
+    /// Uniform initial Cauchy stress of every particle (symmetric 3x3, tension positive),
+    /// e.g. a prestressed part; carried on by the rate-form (Jaumann) stress updates. See
+    /// [`crate::Simulation::set_initial_stress`] for what refuses it.
+    pub initial_stress: Option<tlsph_math::Tensor3>,
 }
 
 /// Prescribed velocity on a set of particles of one body (numerics.md §13.2).

@@ -376,6 +376,11 @@ impl<const D: usize> Simulation<D> {
             steps_done: 0,
             next_dt: 0.0,
         };
+        for (b, body) in model.bodies.iter().enumerate() {
+            if let Some(stress) = body.initial_stress {
+                sim.set_initial_stress(b, stress)?;
+            }
+        }
         // Prescribed velocities hold from t = 0.
         sim.impose_velocities();
         Ok(sim)
@@ -847,7 +852,8 @@ impl<const D: usize> Simulation<D> {
     /// Sets a uniform initial Cauchy stress σ0 (symmetric, tension positive) on every particle
     /// of body `body` before the first step, e.g. a prestressed state (problems.md R-P5). The
     /// rate-form stress updates carry it on; the Green–Lagrange path computes stress from F
-    /// alone and an equation of state computes pressure from J alone, so those refuse it.
+    /// alone, an equation of state computes pressure from J alone and a damage model keeps its
+    /// own effective stress, so those refuse it.
     pub fn set_initial_stress(
         &mut self,
         body: usize,
@@ -873,10 +879,11 @@ impl<const D: usize> Simulation<D> {
         }
         let material = &self.materials[info.material];
         let stress_from_state = self.config.stress_update == StressUpdate::GreenLagrange
-            || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)));
+            || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)))
+            || matches!(material, MaterialModel::ElasticDamage(_));
         if stress_from_state {
             return refuse(format!(
-                "body `{}`: its stress is a function of the current state (Green–Lagrange path or an equation of state), so an initial stress would be lost",
+                "body `{}`: its stress is a function of the current state (Green–Lagrange path, an equation of state, or a damage model's effective stress), so an initial stress would be lost",
                 info.name
             ));
         }

@@ -68,6 +68,7 @@ pub fn model(
             spacing: dx,
             volumes: vec![dx * dx; n],
             velocities: vec![Vector::<2>::zeros(); n],
+            initial_stress: None,
             positions,
         }],
         boundaries: loads

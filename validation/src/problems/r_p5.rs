@@ -5,7 +5,7 @@
 use crate::report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
 use std::time::Instant;
 use tlsph_io::{parse_scene, DimensionModel};
-use tlsph_math::{Tensor3, Vector};
+use tlsph_math::Vector;
 use tlsph_solver::stability::{StabilityMonitor, StabilityThresholds};
 use tlsph_solver::{Model, Simulation};
 
@@ -32,8 +32,9 @@ pub const FORMULATIONS: [(&str, &str); 2] = [
     ("updated-lagrangian", "conventional SPH"),
 ];
 
-/// Scene of the block: `nx` × `ny` particles, edges fixed (the outer row on each side).
-pub fn scene(formulation: &str, nx: usize, ny: usize, end_time: f64) -> String {
+/// Scene of the block: `nx` × `ny` particles under the initial tension σ_xx = σ_yy =
+/// `tension` (σ_zz = ν(σ_xx + σ_yy), plane strain), edges fixed (the outer row on each side).
+pub fn scene(formulation: &str, nx: usize, ny: usize, end_time: f64, tension: f64) -> String {
     let (w, h) = (nx as f64 * SPACING, ny as f64 * SPACING);
     let edge = SPACING;
     format!(
@@ -58,6 +59,7 @@ name = "block"
 material = "steel"
 spacing = {SPACING:e}
 box = {{ min = [0.0, 0.0], max = [{w:e}, {h:e}] }}
+initial_stress = {{ xx = {tension:e}, yy = {tension:e}, zz = {zz:e} }}
 
 [[boundary]]
 name = "left"
@@ -85,6 +87,7 @@ fixed = true
 "#,
         r = w - edge,
         t = h - edge,
+        zz = POISSON * 2.0 * tension,
     )
 }
 
@@ -99,8 +102,8 @@ fn split_mix(state: &mut u64) -> f64 {
 
 /// The model with every reference position moved by a uniform random amount of at most
 /// 1e-6 Δx per component (fixed seed), as both of the thesis' runs need a seed.
-pub fn model(formulation: &str, nx: usize, ny: usize, end_time: f64) -> Model<2> {
-    let text = scene(formulation, nx, ny, end_time);
+pub fn model(formulation: &str, nx: usize, ny: usize, end_time: f64, tension: f64) -> Model<2> {
+    let text = scene(formulation, nx, ny, end_time, tension);
     let mut model = match parse_scene(&text, "R-P5 scene").map(|s| s.model) {
         Ok(DimensionModel::Two(m)) => m,
         Ok(_) => unreachable!("2D scene"),
@@ -133,14 +136,8 @@ pub struct BlockRun {
 /// (σ_zz = ν(σ_xx + σ_yy)), sampling the stability report every step (the runs
 /// are a few hundred steps).
 pub fn simulate(formulation: &str, nx: usize, ny: usize, end_time: f64, tension: f64) -> BlockRun {
-    let mut sim = Simulation::new(model(formulation, nx, ny, end_time)).expect("R-P5 is valid");
-    let sigma = Tensor3::from_diagonal(&tlsph_math::Vector3::new(
-        tension,
-        tension,
-        POISSON * 2.0 * tension,
-    ));
-    sim.set_initial_stress(0, sigma)
-        .expect("linear-elastic Jaumann block takes an initial stress");
+    let mut sim = Simulation::new(model(formulation, nx, ny, end_time, tension))
+        .expect("R-P5 scene is valid");
     let mut run = BlockRun {
         stability: StabilityMonitor::new(StabilityThresholds::default()),
         max_displacement: 0.0,

@@ -346,3 +346,56 @@ fn updated_lagrangian_scenes_parse_and_refuse_total_lagrangian_only_effects() {
     let tl = format!("{PLATE_IMPACT}\n[artificial_stress]\nepsilon = 0.3\n");
     assert_eq!(error_of(&tl).field, "artificial_stress");
 }
+
+#[test]
+fn an_initial_stress_is_carried_from_the_scene_into_the_run() {
+    // A free 1D bar at rest with σ_xx = 1e-3 prestress: the stress is the declared one at
+    // t = 0, and with free ends it releases from the ends inward (the middle keeps it until
+    // the release waves, travelling at c = 1, arrive).
+    let text = PLATE_IMPACT
+        .replace(
+            "spacing = 0.01",
+            "spacing = 0.01\ninitial_stress = { xx = 1e-3, yy = 2.5e-4, zz = 2.5e-4 }",
+        )
+        .replace("velocity = [0.1]", "velocity = [0.0]")
+        .replace("end_time = 2.0", "end_time = 0.5");
+    let scene = parse_scene(&text, "scene.toml").unwrap();
+    let DimensionModel::One(m) = &scene.model else {
+        unreachable!()
+    };
+    let s = m.bodies[0].initial_stress.unwrap();
+    assert_eq!(
+        (s[(0, 0)], s[(1, 1)], s[(2, 2)], s[(0, 1)]),
+        (1e-3, 2.5e-4, 2.5e-4, 0.0)
+    );
+    let record = tlsph_io::run_scene(&scene, &mut |_, _| {}).unwrap();
+    let stress = record
+        .probe("target-mid")
+        .unwrap()
+        .series(tlsph_solver::ParticleField::Stress(0, 0))
+        .unwrap();
+    // Probe at x = 1.25, 0.75 from the far end: untouched until t = 0.5.
+    assert!(stress.iter().all(|s| (s - 1e-3).abs() < 1e-9), "{stress:?}");
+}
+
+#[test]
+fn initial_stress_errors_name_the_field_and_line() {
+    // A shear component the 1D (uniaxial-strain) scene does not have, and an unknown key.
+    for (bad, message) in [
+        ("initial_stress = { xx = 1.0, xy = 2.0 }", "`xy`"),
+        ("initial_stress = { xx = 1.0, shear = 2.0 }", "shear"),
+    ] {
+        let text = PLATE_IMPACT.replace("spacing = 0.01", &format!("spacing = 0.01\n{bad}"));
+        let e = error_of(&text);
+        assert_eq!(e.line, Some(line_of(&text, bad)), "{e}");
+        assert!(e.message.contains(message), "{e}");
+    }
+    let gl = PLATE_IMPACT
+        .replace(
+            "spacing = 0.01",
+            "spacing = 0.01\ninitial_stress = { xx = 1.0 }",
+        )
+        .replace("cfl = 0.3", "cfl = 0.3\nstress_update = \"green-lagrange\"");
+    let e = error_of(&gl);
+    assert_eq!(e.field, "body[target].initial_stress", "{e}");
+}

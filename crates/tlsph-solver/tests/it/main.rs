@@ -77,6 +77,7 @@ fn model<const D: usize>(
             spacing: dx,
             volumes: vec![dx.powi(D as i32); positions.len()],
             velocities: positions.iter().map(&velocity).collect(),
+            initial_stress: None,
             positions,
         }],
         boundaries: vec![],
