@@ -3,6 +3,7 @@
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 
+mod kernel_groups;
 mod materials;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).
