@@ -498,10 +498,14 @@ impl<const D: usize> Simulation<D> {
                 &self.particles.velocities,
                 self.ghosts.first_or(self.particles.len()),
             );
+            impose_on(&self.prescribed, &mut xsph.velocity);
             self.ghosts.mirror(&mut xsph.velocity);
         }
         if let Some(updated) = &mut self.updated {
             updated.update_xsph(&self.particles);
+            if let Some((_, transport)) = &mut updated.xsph {
+                impose_on(&self.prescribed, transport);
+            }
         }
         self.next_dt = next_dt;
         self.steps_done += 1;
@@ -770,15 +774,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     fn impose_velocities(&mut self) {
-        for set in &self.prescribed {
-            for &i in &set.particles {
-                for (c, imposed) in set.components.iter().enumerate() {
-                    if *imposed {
-                        self.particles.velocities[i][c] = set.velocity[c];
-                    }
-                }
-            }
-        }
+        impose_on(&self.prescribed, &mut self.particles.velocities);
     }
 
     fn check_finite(&self, step: u64) -> Result<(), StepError> {
@@ -1278,6 +1274,21 @@ fn mirror_body<const D: usize>(
         neighbours: Default::default(),
         kernel,
     })
+}
+
+/// Sets the prescribed components of `velocities` (numerics.md §13.2). Applied to the particle
+/// velocities and to the XSPH transport velocities, so a fixed particle never drifts with the
+/// average of its moving neighbours.
+fn impose_on<const D: usize>(prescribed: &[PrescribedSet<D>], velocities: &mut [Vector<D>]) {
+    for set in prescribed {
+        for &i in &set.particles {
+            for (c, imposed) in set.components.iter().enumerate() {
+                if *imposed {
+                    velocities[i][c] = set.velocity[c];
+                }
+            }
+        }
+    }
 }
 
 /// Chunk length of deterministic parallel reductions and searches.
