@@ -1,5 +1,10 @@
 //! One module per published problem.
 
+pub mod f_a2;
+pub mod f_a3;
+pub mod f_a4;
+pub mod f_a5;
+pub mod fuller;
 pub mod r_c7x;
 pub mod r_p1;
 pub mod r_p2;
