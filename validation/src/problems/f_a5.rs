@@ -170,9 +170,17 @@ pub fn run(tier: Tier) -> ProblemReport {
         r.cost.steps,
         r.cost.wall_s,
     ));
-    report.notes.push(
-        "Ring A's row fails: with the thesis' XSPH 0.5 and α = 1 viscosity neither ring clumps below 0.5Δx here, and the smallest distances of the two rings stay close to each other (the per-ring curves), so the thesis' contrast (A clumps and cracks, B does not) is not reproduced. Possible reasons: XSPH itself orders the particle map (F §3.3.1), Fuller's time step/time unit and the unreported initial gap differ, and the compressive impact at 0.086c does not reach the tension levels where the instability grows quickly (R-P5: the unstable band is narrow at small σ/M).".into(),
-    );
+    let reproduced = r.min_ratio.0 < 0.5 && r.min_ratio.1 >= 0.5;
+    report.notes.push(format!(
+        "Thesis contrast (ring A below 0.5Δx, ring B not): {}. Ring A {} (min d/Δx {:.3}, clumping index up to {:.3}); ring B {} (min d/Δx {:.3}, clumping index up to {:.3}). The quick tier (150 τ) covers the approach and first contact only, before the rings' tensile phase; over the full 1000 τ (through the rebound) the correction on ring B with ε = 0.3 `[C]`, n = 6 reduces clumping markedly but, with these settings, need not remove it ('almost entirely removed' in the thesis; ε is not given there). XSPH 0.5 itself orders the map (F §3.3.1), which is why the full tier also reports the run without it.",
+        if reproduced { "reproduced" } else { "not reproduced" },
+        if r.min_ratio.0 < 0.5 { "clumps" } else { "does not clump" },
+        r.min_ratio.0,
+        r.max_clumping.0,
+        if r.min_ratio.1 < 0.5 { "clumps too" } else { "does not clump" },
+        r.min_ratio.1,
+        r.max_clumping.1,
+    ));
     if tier == Tier::Full {
         let off = simulate(end_time, 0.0);
         report.notes.push(format!(
