@@ -77,6 +77,26 @@ pub fn problems() -> Vec<Problem> {
             run: problems::f_a13::run,
         },
         Problem {
+            id: problems::f_a2::ID,
+            title: "Fuller: elastic ball bouncing off a fixed wall through the kernel, XSPH off/on",
+            run: problems::f_a2::run,
+        },
+        Problem {
+            id: problems::f_a3::ID,
+            title: "Fuller: linear momentum of colliding discs, mass-ratio and speed sweep",
+            run: problems::f_a3::run,
+        },
+        Problem {
+            id: problems::f_a4::ID,
+            title: "Fuller: angular momentum of a rotating disc, conventional SPH vs TLSPH",
+            run: problems::f_a4::run,
+        },
+        Problem {
+            id: problems::f_a5::ID,
+            title: "Fuller: colliding rubber rings, artificial stress off (A) and on (B)",
+            run: problems::f_a5::run,
+        },
+        Problem {
             id: "R-C3",
             title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
             run: stability::run,

@@ -594,10 +594,73 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         let or_default = |v: &Option<Spanned<f64>>, field: &str, default: f64| {
             v.as_ref().map_or(Ok(default), |v| ctx.positive(v, field))
         };
+        let carriers = match &a.bodies {
+            None => None,
+            Some(names) => {
+                let mut indices = Vec::with_capacity(names.get_ref().len());
+                for name in names.get_ref() {
+                    let index = bodies.iter().position(|b| &b.name == name).ok_or_else(|| {
+                        ctx.error(
+                            &names.span(),
+                            "artificial_stress.bodies",
+                            format!("no body named `{name}`"),
+                        )
+                    })?;
+                    indices.push(index);
+                }
+                Some(indices)
+            }
+        };
         effects.artificial_stress = Some(ArtificialStress {
             epsilon: or_default(&a.epsilon, "artificial_stress.epsilon", 0.3)?,
             exponent: or_default(&a.exponent, "artificial_stress.exponent", 6.0)?,
+            bodies: carriers,
         });
+    }
+    if let Some((b, group)) = file
+        .body
+        .iter()
+        .find_map(|b| b.kernel_group.as_ref().map(|g| (b, g)))
+    {
+        if !updated_lagrangian {
+            return Err(ctx.error(
+                &group.span(),
+                &format!("body[{}].kernel_group", b.name.get_ref()),
+                "needs formulation = \"updated-lagrangian\" (TLSPH bodies interact only through contact)".into(),
+            ));
+        }
+        if let Some((b, g)) = file.body.iter().find_map(|b| {
+            b.kernel_group
+                .as_ref()
+                .filter(|g| g.get_ref().trim().is_empty())
+                .map(|g| (b, g))
+        }) {
+            return Err(ctx.error(
+                &g.span(),
+                &format!("body[{}].kernel_group", b.name.get_ref()),
+                "must be a non-empty name".into(),
+            ));
+        }
+        // Group names: the explicit one, else the material name; indices by first appearance.
+        let mut names: Vec<&str> = Vec::new();
+        let groups = file
+            .body
+            .iter()
+            .map(|b| {
+                let name = b
+                    .kernel_group
+                    .as_ref()
+                    .map_or(b.material.get_ref().as_str(), |g| g.get_ref().as_str());
+                match names.iter().position(|n| *n == name) {
+                    Some(k) => k,
+                    None => {
+                        names.push(name);
+                        names.len() - 1
+                    }
+                }
+            })
+            .collect();
+        effects.kernel_groups = Some(groups);
     }
     if updated_lagrangian {
         if let Some(plane) = file.symmetry_plane.first() {

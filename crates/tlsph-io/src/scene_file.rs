@@ -54,6 +54,8 @@ pub(crate) struct StabilityTable {
 pub(crate) struct ArtificialStressTable {
     pub epsilon: Option<Spanned<f64>>,
     pub exponent: Option<Spanned<f64>>,
+    /// Names of the bodies that carry the correction (default: every body).
+    pub bodies: Option<Spanned<Vec<String>>>,
 }
 
 /// `[artificial_viscosity]`: Monaghan's pairwise viscosity.
@@ -191,6 +193,8 @@ pub(crate) struct EosTable {
 pub(crate) struct BodyTable {
     pub name: Spanned<String>,
     pub material: Spanned<String>,
+    /// Kernel interaction group (updated-Lagrangian; default: the material name).
+    pub kernel_group: Option<Spanned<String>>,
     pub spacing: Spanned<f64>,
     /// A single shape may be given directly on the body ...
     #[serde(rename = "box")]

@@ -329,17 +329,27 @@ pub struct EffectsDescription<const D: usize> {
     pub xsph: Option<f64>,
     /// Monaghan/Gray artificial stress (numerics.md §10.3; updated-Lagrangian only).
     pub artificial_stress: Option<ArtificialStress>,
+    /// Kernel interaction group of each body, indexed like `Model::bodies`
+    /// (updated-Lagrangian only; numerics.md §3, F §4.3 "particle types"): two bodies
+    /// interact through the kernel iff their groups are equal. `None`: the material index, so
+    /// bodies of the same material interact.
+    pub kernel_groups: Option<Vec<usize>>,
 }
 
 /// Monaghan/Gray artificial stress (numerics.md §10.3; F 3.5–3.7): per particle
 /// R_I = −ε Q diag(σ'_k⁺/ρ²) Qᵀ over the tensile principal stresses σ'_k, and the pair term
 /// (R_I + R_J) (W_IJ/W(Δx))ⁿ added inside the momentum bracket.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ArtificialStress {
     /// ε (Gray–Monaghan–Swift 0.3).
     pub epsilon: f64,
     /// Exponent n of f_IJ = W_IJ/W(Δx) (Fuller 6).
     pub exponent: f64,
+    /// Indices (into `Model::bodies`) of the bodies whose particles carry R_I (F §3.5: one
+    /// ring with, one without, in the same run); `None`: every body. A body without it has
+    /// R_I = 0 but still feels R_J of the corrected bodies it interacts with, so the pair term
+    /// stays equal and opposite.
+    pub bodies: Option<Vec<usize>>,
 }
 
 /// Everything needed to start a simulation.

@@ -309,6 +309,24 @@ impl<const D: usize> Simulation<D> {
                 message: "artificial stress is for formulation = \"updated-lagrangian\" only (TLSPH has no tensile instability to correct)".into(),
             });
         }
+        if let Some(groups) = &model.effects.kernel_groups {
+            if !updated_lagrangian {
+                return Err(SetupError::InvalidConfig {
+                    field: "kernel_group",
+                    message: "kernel interaction groups are for formulation = \"updated-lagrangian\" only (TLSPH bodies interact only through contact)".into(),
+                });
+            }
+            if groups.len() != bodies.len() {
+                return Err(SetupError::InvalidConfig {
+                    field: "kernel_group",
+                    message: format!(
+                        "{} groups given for {} bodies (one per body)",
+                        groups.len(),
+                        bodies.len()
+                    ),
+                });
+            }
+        }
         let xsph = match model.effects.xsph {
             None => None,
             Some(_) if updated_lagrangian => None,
@@ -342,7 +360,10 @@ impl<const D: usize> Simulation<D> {
             let body: Vec<u32> = (0..n_real).map(|i| body_of(i) as u32).collect();
             let group = body
                 .iter()
-                .map(|&b| bodies[b as usize].material as u32)
+                .map(|&b| match &model.effects.kernel_groups {
+                    Some(groups) => groups[b as usize] as u32,
+                    None => bodies[b as usize].material as u32,
+                })
                 .collect();
             let xsph = model
                 .effects
@@ -515,10 +536,14 @@ impl<const D: usize> Simulation<D> {
                 &self.particles.velocities,
                 self.ghosts.first_or(self.particles.len()),
             );
+            impose_on(&self.prescribed, &mut xsph.velocity);
             self.ghosts.mirror(&mut xsph.velocity);
         }
         if let Some(updated) = &mut self.updated {
             updated.update_xsph(&self.particles);
+            if let Some((_, transport)) = &mut updated.xsph {
+                impose_on(&self.prescribed, transport);
+            }
         }
         self.next_dt = next_dt;
         self.steps_done += 1;
@@ -665,9 +690,23 @@ impl<const D: usize> Simulation<D> {
     /// deformation predicts (see [`crate::stability`]).
     /// One cell-list search: a diagnostic for output intervals, not part of a step.
     pub fn neighbour_distances(&self) -> NeighbourDistances {
+        self.neighbour_distances_among(0..self.n_particles())
+    }
+
+    /// As [`Simulation::neighbour_distances`] for the particles of body `body` alone, with the
+    /// nearest neighbour searched among that body's particles (intra-body clumping, e.g. one of
+    /// two colliding rings, F §3.5). An index beyond the bodies gives NaN statistics.
+    pub fn body_neighbour_distances(&self, body: usize) -> NeighbourDistances {
+        match self.bodies.get(body) {
+            Some(b) => self.neighbour_distances_among(b.range.clone()),
+            None => NeighbourDistances::undefined(),
+        }
+    }
+
+    fn neighbour_distances_among(&self, members: std::ops::Range<usize>) -> NeighbourDistances {
         let n = self.n_particles();
         let p = &self.particles;
-        let alive: Vec<usize> = (0..n)
+        let alive: Vec<usize> = members
             .filter(|&i| self.removed.is_empty() || !self.removed[i])
             .collect();
         let positions: Vec<Vector<D>> = alive
@@ -682,13 +721,7 @@ impl<const D: usize> Simulation<D> {
         let largest = self.bodies.iter().map(|b| b.spacing).fold(0.0, f64::max);
         let Ok(list) = build_neighbour_list(&positions, cap * largest) else {
             // Only non-finite positions make the search fail.
-            return NeighbourDistances {
-                min_ratio: f64::NAN,
-                max_ratio: f64::NAN,
-                clumping_index: f64::NAN,
-                min_spacing_ratio: f64::NAN,
-                max_spacing_ratio: f64::NAN,
-            };
+            return NeighbourDistances::undefined();
         };
         let stretch: Vec<f64> = alive
             .par_iter()
@@ -793,15 +826,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     fn impose_velocities(&mut self) {
-        for set in &self.prescribed {
-            for &i in &set.particles {
-                for (c, imposed) in set.components.iter().enumerate() {
-                    if *imposed {
-                        self.particles.velocities[i][c] = set.velocity[c];
-                    }
-                }
-            }
-        }
+        impose_on(&self.prescribed, &mut self.particles.velocities);
     }
 
     fn check_finite(&self, step: u64) -> Result<(), StepError> {
@@ -1335,6 +1360,21 @@ fn mirror_body<const D: usize>(
     })
 }
 
+/// Sets the prescribed components of `velocities` (numerics.md §13.2). Applied to the particle
+/// velocities and to the XSPH transport velocities, so a fixed particle never drifts with the
+/// average of its moving neighbours.
+fn impose_on<const D: usize>(prescribed: &[PrescribedSet<D>], velocities: &mut [Vector<D>]) {
+    for set in prescribed {
+        for &i in &set.particles {
+            for (c, imposed) in set.components.iter().enumerate() {
+                if *imposed {
+                    velocities[i][c] = set.velocity[c];
+                }
+            }
+        }
+    }
+}
+
 /// Chunk length of deterministic parallel reductions and searches.
 const CHUNK: usize = 4096;
 
@@ -1408,7 +1448,7 @@ fn build_effects<const D: usize>(
             energy: 0.0,
         });
     }
-    if let Some(a) = model.effects.artificial_stress {
+    if let Some(a) = &model.effects.artificial_stress {
         if !(a.epsilon.is_finite() && a.epsilon > 0.0 && a.exponent.is_finite() && a.exponent > 0.0)
         {
             return Err(SetupError::InvalidConfig {
@@ -1419,10 +1459,36 @@ fn build_effects<const D: usize>(
                 ),
             });
         }
+        let carries = match &a.bodies {
+            None => vec![true; bodies.len()],
+            Some(list) => {
+                let mut carries = vec![false; bodies.len()];
+                for &b in list {
+                    *carries
+                        .get_mut(b)
+                        .ok_or_else(|| SetupError::InvalidConfig {
+                            field: "artificial_stress.bodies",
+                            message: format!("body #{b} does not exist ({} bodies)", bodies.len()),
+                        })? = true;
+                }
+                carries
+            }
+        };
+        // A body feels the term iff it carries R itself or shares a kernel group with a body
+        // that does; every other body is skipped by the effect's loops.
+        let group = |b: usize| match &model.effects.kernel_groups {
+            Some(groups) => groups.get(b).copied().unwrap_or(usize::MAX),
+            None => bodies[b].material,
+        };
+        let feels: Vec<bool> = (0..bodies.len())
+            .map(|b| (0..bodies.len()).any(|c| carries[c] && group(c) == group(b)))
+            .collect();
         effects.push(BookedEffect {
             effect: Box::new(MonaghanArtificialStress::new(
                 a.epsilon,
                 a.exponent,
+                carries,
+                feels,
                 (0..n).map(|i| body_of(i) as u32).collect(),
                 bodies
                     .iter()

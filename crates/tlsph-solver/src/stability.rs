@@ -63,6 +63,19 @@ pub struct NeighbourDistances {
     pub max_spacing_ratio: f64,
 }
 
+impl NeighbourDistances {
+    /// All statistics NaN: no particles to measure, or non-finite positions.
+    pub fn undefined() -> Self {
+        Self {
+            min_ratio: f64::NAN,
+            max_ratio: f64::NAN,
+            clumping_index: f64::NAN,
+            min_spacing_ratio: f64::NAN,
+            max_spacing_ratio: f64::NAN,
+        }
+    }
+}
+
 /// One sample of the stability report.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StabilitySample {

@@ -1,6 +1,6 @@
 //! Updated-Lagrangian ("Eulerian kernel", conventional) SPH: the kernel lives in the current
-//! configuration, neighbours are searched as particles move, and bodies of the same material
-//! interact through the kernel (numerics.md §3; R 2.51–2.67; F 2.21, 2.47, 2.59).
+//! configuration, neighbours are searched as particles move, and bodies of the same kernel
+//! group (by default: the same material) interact through the kernel (numerics.md §3; R 2.51–2.67; F 2.21, 2.47, 2.59).
 //!
 //! The scheme shares the time integrator and every constitutive update with TLSPH. Per step:
 //!
@@ -62,7 +62,8 @@ impl<const D: usize> CurrentPairs<D> {
 pub(crate) struct UpdatedLagrangian<const D: usize> {
     /// Body of each particle.
     body: Vec<u32>,
-    /// Interaction group (material index) of each particle: only equal groups interact.
+    /// Kernel interaction group of each particle (`EffectsDescription::kernel_groups`, by
+    /// default the material index): only equal groups interact.
     group: Vec<u32>,
     /// Kernel of each body.
     kernels: Vec<AnyKernel>,

@@ -3,6 +3,11 @@
 pub mod f_a1;
 pub mod f_a12;
 pub mod f_a13;
+pub mod f_a2;
+pub mod f_a3;
+pub mod f_a4;
+pub mod f_a5;
+pub mod fuller_scenes;
 pub mod fuller;
 pub mod r_c7x;
 pub mod r_p1;

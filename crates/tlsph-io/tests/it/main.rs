@@ -5,6 +5,7 @@ use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 
 mod cuts;
 mod damage;
+mod kernel_groups;
 mod materials;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).

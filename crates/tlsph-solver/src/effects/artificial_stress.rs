@@ -9,10 +9,17 @@ use tlsph_math::{project, Tensor3, Vector};
 
 /// R_I = −ε Q diag(max(σ'_k, 0)/ρ_I²) Qᵀ from the principal stresses σ'_k and axes Q of σ_I
 /// (tension positive); a_I = Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ with f_IJ = W_IJ / W(Δx).
+/// Particles of bodies that do not carry the correction have R_I = 0 (no eigen-decomposition);
+/// particles of bodies that cannot meet a carrying one (other kernel group) are skipped.
 #[derive(Debug, Clone)]
 pub struct MonaghanArtificialStress {
     epsilon: f64,
     exponent: f64,
+    /// Per body: whether its particles carry R_I.
+    carries: Vec<bool>,
+    /// Per body: whether its particles can feel the term (it carries R or shares a kernel
+    /// group with a body that does).
+    feels: Vec<bool>,
     /// Body index of each particle.
     body: Vec<u32>,
     /// W(Δx) of each body (Δx its initial spacing).
@@ -22,10 +29,12 @@ pub struct MonaghanArtificialStress {
 }
 
 impl MonaghanArtificialStress {
-    /// `reference_value` = W(Δx) per body, `body` per particle.
+    /// `carries`, `feels` and `reference_value` = W(Δx) per body, `body` per particle.
     pub(crate) fn new(
         epsilon: f64,
         exponent: f64,
+        carries: Vec<bool>,
+        feels: Vec<bool>,
         body: Vec<u32>,
         reference_value: Vec<f64>,
     ) -> Self {
@@ -33,6 +42,8 @@ impl MonaghanArtificialStress {
         Self {
             epsilon,
             exponent,
+            carries,
+            feels,
             body,
             reference_value,
             correction: vec![Tensor3::zeros(); n],
@@ -56,11 +67,16 @@ impl<const D: usize> Effect<D> for MonaghanArtificialStress {
             return;
         };
         let epsilon = self.epsilon;
+        let (body, carries) = (&self.body, &self.carries);
         self.correction
             .par_iter_mut()
             .enumerate()
             .with_min_len(256)
             .for_each(|(i, r)| {
+                if !carries[body[i] as usize] {
+                    // Stays zero from construction.
+                    return;
+                }
                 let density = p.masses[i] / (p.volumes0[i] * p.jacobian[i]);
                 let eigen = p.stress[i].symmetric_eigen();
                 let scaled = eigen
@@ -70,12 +86,17 @@ impl<const D: usize> Effect<D> for MonaghanArtificialStress {
                     * Tensor3::from_diagonal(&scaled)
                     * eigen.eigenvectors.transpose();
             });
-        let (body, reference, correction) = (&self.body, &self.reference_value, &self.correction);
+        let (reference, correction, feels) = (&self.reference_value, &self.correction, &self.feels);
         let exponent = self.exponent;
         out.par_iter_mut()
             .enumerate()
             .with_min_len(256)
             .for_each(|(i, a)| {
+                if !feels[body[i] as usize] {
+                    // No pair of this particle has a non-zero R_I + R_J.
+                    *a = Vector::zeros();
+                    return;
+                }
                 let r_i = correction[i];
                 let mut acc = Vector::<D>::zeros();
                 let range = pairs.range(i);
