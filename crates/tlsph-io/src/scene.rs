@@ -12,9 +12,9 @@ use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
-    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, EffectsDescription,
-    Formulation, MaterialDescription, MaterialModel, Model, ParticleField, PressureModel,
-    SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
+    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
+    EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model, ParticleField,
+    PressureModel, SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
 };
 use toml::Spanned;
 
@@ -662,6 +662,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             .collect();
         effects.kernel_groups = Some(groups);
     }
+    if let Some(c) = &file.contact {
+        effects.contact = Some(build_contact(
+            ctx,
+            c,
+            &bodies,
+            effects.kernel_groups.as_deref(),
+            updated_lagrangian,
+        )?);
+    }
     if updated_lagrangian {
         if let Some(plane) = file.symmetry_plane.first() {
             return Err(ctx.error(
@@ -713,6 +722,78 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         probes,
         output,
     ))
+}
+
+/// `[contact]` (numerics.md §12.2): scale a > 0, exponent n ≥ 1 (default 4), optional body
+/// pairs by name (default: every pair of different bodies). With the updated-Lagrangian
+/// formulation bodies of the same material already interact through the kernel, so naming
+/// such a pair is an error (and "all pairs" leaves them out).
+fn build_contact<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<crate::scene_file::ContactTable>,
+    bodies: &[BodyDescription<D>],
+    kernel_groups: Option<&[usize]>,
+    updated_lagrangian: bool,
+) -> Result<ContactDescription, SceneError> {
+    // Kernel interaction group of a body: the declared one, else its material.
+    let group = |b: usize| kernel_groups.map_or(bodies[b].material, |g| g[b]);
+    let c = table.get_ref();
+    let scale = ctx.positive(&c.scale, "contact.scale")?;
+    let exponent = match &c.exponent {
+        None => 4.0,
+        Some(e) => {
+            let v = ctx.positive(e, "contact.exponent")?;
+            if v < 1.0 {
+                return Err(ctx.error(
+                    &e.span(),
+                    "contact.exponent",
+                    format!("must be ≥ 1 (the force must stiffen as particles approach), got {v}"),
+                ));
+            }
+            v
+        }
+    };
+    if bodies.len() < 2 {
+        return Err(ctx.error(&table.span(), "contact", "needs at least two bodies".into()));
+    }
+    let pairs = match &c.pairs {
+        None => None,
+        Some(list) => {
+            let span = list.span();
+            let err = |message: String| Err(ctx.error(&span, "contact.pairs", message));
+            if list.get_ref().is_empty() {
+                return err("lists no pair; omit `pairs` for every pair of bodies".into());
+            }
+            let mut pairs = Vec::new();
+            for pair in list.get_ref() {
+                let [a, b] = pair.as_slice() else {
+                    return err(format!(
+                        "each entry must be two body names, e.g. [\"flyer\", \"target\"], got {pair:?}"
+                    ));
+                };
+                let find = |name: &String| bodies.iter().position(|x| &x.name == name);
+                let (Some(ia), Some(ib)) = (find(a), find(b)) else {
+                    let missing = if find(a).is_none() { a } else { b };
+                    return err(format!("no body named `{missing}`"));
+                };
+                if ia == ib {
+                    return err(format!("body `{a}` cannot be in contact with itself"));
+                }
+                if updated_lagrangian && group(ia) == group(ib) {
+                    return err(format!(
+                        "bodies `{a}` and `{b}` share a kernel group (by default their material) and so already interact through the kernel with formulation = \"updated-lagrangian\"; contact would count their interaction twice"
+                    ));
+                }
+                pairs.push((ia, ib));
+            }
+            Some(pairs)
+        }
+    };
+    Ok(ContactDescription {
+        scale,
+        exponent,
+        pairs,
+    })
 }
 
 fn build_body<const D: usize>(

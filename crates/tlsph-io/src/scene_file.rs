@@ -36,6 +36,17 @@ pub(crate) struct SceneFile {
     pub artificial_stress: Option<Spanned<ArtificialStressTable>>,
     #[serde(default)]
     pub stability: Option<StabilityTable>,
+    #[serde(default)]
+    pub contact: Option<Spanned<ContactTable>>,
+}
+
+/// `[contact]`: potential-type particle-to-particle contact between bodies (numerics.md §12.2).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ContactTable {
+    pub scale: Spanned<f64>,
+    pub exponent: Option<Spanned<f64>>,
+    pub pairs: Option<Spanned<Vec<Vec<String>>>>,
 }
 
 /// `[stability]`: thresholds of the per-run stability report.

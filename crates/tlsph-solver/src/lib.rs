@@ -26,11 +26,12 @@ mod updated_lagrangian;
 
 pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
+pub use effects::CONTACT_SKIN_FRACTION;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, DamageModel,
-    EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
+    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
+    DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
     MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
     StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };

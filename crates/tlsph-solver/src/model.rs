@@ -334,6 +334,22 @@ pub struct EffectsDescription<const D: usize> {
     /// interact through the kernel iff their groups are equal. `None`: the material index, so
     /// bodies of the same material interact.
     pub kernel_groups: Option<Vec<usize>>,
+    /// Potential-type particle-to-particle contact between bodies (numerics.md §12.2).
+    pub contact: Option<ContactDescription>,
+}
+
+/// Vignjevic-type potential contact between particles of different bodies (numerics.md §12.2
+/// `[C]`): f_I = a M* d0^{d−1} [(W(r, h_c)/W(d0, h_c))ⁿ − 1]₊ (x_I − x_K)/r, f_K = −f_I.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactDescription {
+    /// Scale a (deck card value; 2.0, 0.2 or 0.02 in the Reveles decks).
+    pub scale: f64,
+    /// Exponent n (4 in every Reveles deck).
+    pub exponent: f64,
+    /// Body pairs (indices into `Model::bodies`) in contact; `None` = every pair of different
+    /// bodies (in the updated-Lagrangian formulation minus those that already interact through
+    /// the kernel).
+    pub pairs: Option<Vec<(usize, usize)>>,
 }
 
 /// Monaghan/Gray artificial stress (numerics.md §10.3; F 3.5–3.7): per particle
@@ -365,4 +381,16 @@ pub struct Model<const D: usize> {
     pub boundaries: Vec<BoundaryDescription<D>>,
     /// Optional effects.
     pub effects: EffectsDescription<D>,
+}
+
+impl<const D: usize> Model<D> {
+    /// Kernel interaction group of body `body` (updated-Lagrangian formulation): the declared
+    /// group, else the body's material index. Bodies interact through the kernel iff their
+    /// groups are equal.
+    pub fn kernel_group(&self, body: usize) -> usize {
+        match &self.effects.kernel_groups {
+            Some(groups) => groups.get(body).copied().unwrap_or(usize::MAX),
+            None => self.bodies[body].material,
+        }
+    }
 }

@@ -6,7 +6,7 @@ use crate::damage::{update_damaged_elastic, DamageState};
 use crate::diagnostics::Diagnostics;
 use crate::effects::{
     BookedEffect, EffectContext, HourglassControl, MonaghanArtificialStress, MonaghanViscosity,
-    RigidWall,
+    PairLaw, ParticleContact, RigidWall,
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
@@ -360,10 +360,7 @@ impl<const D: usize> Simulation<D> {
             let body: Vec<u32> = (0..n_real).map(|i| body_of(i) as u32).collect();
             let group = body
                 .iter()
-                .map(|&b| match &model.effects.kernel_groups {
-                    Some(groups) => groups[b as usize] as u32,
-                    None => bodies[b as usize].material as u32,
-                })
+                .map(|&b| model.kernel_group(b as usize) as u32)
                 .collect();
             let xsph = model
                 .effects
@@ -506,7 +503,14 @@ impl<const D: usize> Simulation<D> {
         }
         // The CFL step reads v^{n−½} and J^n only, so it can be taken before the forces, which
         // lets the force gather apply the kick in the same pass.
-        let (next_dt, limiting_particle) = self.stable_dt();
+        // Effects vote at x^n too (contact stiffness, numerics.md §7); none declared: no vote.
+        let mut effect_limit = (f64::INFINITY, usize::MAX);
+        for booked in &mut self.effects {
+            if let Some(limit) = booked.effect.time_step_limit(&self.particles) {
+                effect_limit = min_by_value_then_index(effect_limit, limit);
+            }
+        }
+        let (next_dt, limiting_particle) = self.stable_dt(effect_limit);
         // Kick: v^{n+½} = v^{n−½} + ½(Δt^n + Δt^{n+1}) a^n (R 5.64–5.66; Δt^0 = 0 gives the
         // first half step).
         let kick = 0.5 * (dt + next_dt);
@@ -571,9 +575,10 @@ impl<const D: usize> Simulation<D> {
         self.steps_done > 0 && self.next_dt <= 0.0
     }
 
-    /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70),
-    /// clipped so the run ends exactly at `end_time`.
-    fn stable_dt(&self) -> (f64, usize) {
+    /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70), or
+    /// the effects' limit (contact, numerics.md §7) when smaller, clipped so the run ends
+    /// exactly at `end_time`.
+    fn stable_dt(&self, effect_limit: (f64, usize)) -> (f64, usize) {
         let mut best = (f64::INFINITY, 0usize);
         for info in &self.bodies {
             let r = info.range.clone();
@@ -589,7 +594,11 @@ impl<const D: usize> Simulation<D> {
             best = min_by_value_then_index(best, local);
         }
         let remaining = self.config.end_time - self.time;
-        let dt = self.config.cfl * best.0;
+        best.0 *= self.config.cfl;
+        if effect_limit.0 < best.0 {
+            best = effect_limit;
+        }
+        let dt = best.0;
         // Avoid a sliver of a final step: stretch into the end when within 1 % of it.
         let dt = if remaining <= dt * 1.01 {
             remaining.max(0.0)
@@ -760,6 +769,13 @@ impl<const D: usize> Simulation<D> {
             min_spacing_ratio: min(&spacing_ratios),
             max_spacing_ratio: max(&spacing_ratios),
         }
+    }
+
+    /// Candidate-list rebuilds of the particle contact so far (`None` without `[contact]`).
+    pub fn contact_rebuilds(&self) -> Option<u64> {
+        self.effects
+            .iter()
+            .find_map(|b| b.effect.contact_rebuilds())
     }
 
     /// Verlet-list rebuilds so far (updated-Lagrangian formulation only).
@@ -1476,10 +1492,7 @@ fn build_effects<const D: usize>(
         };
         // A body feels the term iff it carries R itself or shares a kernel group with a body
         // that does; every other body is skipped by the effect's loops.
-        let group = |b: usize| match &model.effects.kernel_groups {
-            Some(groups) => groups.get(b).copied().unwrap_or(usize::MAX),
-            None => bodies[b].material,
-        };
+        let group = |b: usize| model.kernel_group(b);
         let feels: Vec<bool> = (0..bodies.len())
             .map(|b| (0..bodies.len()).any(|c| carries[c] && group(c) == group(b)))
             .collect();
@@ -1496,6 +1509,12 @@ fn build_effects<const D: usize>(
                     .map(|(b, k)| k.value(b.spacing))
                     .collect(),
             )),
+            energy: 0.0,
+        });
+    }
+    if let Some(contact) = &model.effects.contact {
+        effects.push(BookedEffect {
+            effect: Box::new(build_contact(model, contact, bodies, n)?),
             energy: 0.0,
         });
     }
@@ -1530,6 +1549,99 @@ fn build_effects<const D: usize>(
         });
     }
     Ok(effects)
+}
+
+/// The particle contact of numerics.md §12.2 for the declared body pairs (or every pair of
+/// different bodies). In the updated-Lagrangian formulation bodies that already interact
+/// through the kernel (same interaction group: same material, as in `UpdatedLagrangian`) get
+/// no contact: an explicit pair of them is an error, "all pairs" skips them.
+fn build_contact<const D: usize>(
+    model: &Model<D>,
+    contact: &crate::model::ContactDescription,
+    bodies: &[BodyInfo],
+    n_real: usize,
+) -> Result<ParticleContact<D>, SetupError> {
+    let fail =
+        |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
+    if !(contact.scale.is_finite() && contact.scale > 0.0) {
+        return fail(
+            "contact.scale",
+            format!("must be finite and > 0, got {}", contact.scale),
+        );
+    }
+    if !(contact.exponent.is_finite() && contact.exponent >= 1.0) {
+        return fail(
+            "contact.exponent",
+            format!("must be finite and ≥ 1, got {}", contact.exponent),
+        );
+    }
+    let nb = bodies.len();
+    let updated = model.config.formulation == Formulation::UpdatedLagrangian;
+    let kernel_linked =
+        |a: usize, b: usize| updated && model.kernel_group(a) == model.kernel_group(b);
+    let pairs: Vec<(usize, usize)> = match &contact.pairs {
+        Some(pairs) => {
+            for &(a, b) in pairs {
+                if a >= nb || b >= nb || a == b {
+                    return fail(
+                        "contact.pairs",
+                        format!("({a}, {b}) is not a pair of two different existing bodies"),
+                    );
+                }
+                if kernel_linked(a, b) {
+                    return fail(
+                        "contact.pairs",
+                        format!(
+                            "bodies `{}` and `{}` already interact through the kernel in the updated-Lagrangian formulation (same kernel group); contact would count their interaction twice",
+                            bodies[a].name, bodies[b].name
+                        ),
+                    );
+                }
+            }
+            pairs.clone()
+        }
+        None => (0..nb)
+            .flat_map(|a| (a + 1..nb).map(move |b| (a, b)))
+            .filter(|&(a, b)| !kernel_linked(a, b))
+            .collect(),
+    };
+    let mut laws: Vec<Option<PairLaw>> = vec![None; nb * nb];
+    for (a, b) in pairs {
+        let (ba, bb) = (&bodies[a], &bodies[b]);
+        let modulus = |info: &BodyInfo| model.materials[info.material].model.longitudinal_modulus();
+        let d0 = 0.5 * (ba.spacing + bb.spacing);
+        let h_c = 0.5 * (ba.smoothing_length + bb.smoothing_length);
+        let kernel = model
+            .config
+            .kernel
+            .build(D, h_c)
+            .map_err(|e| SetupError::Kernel(e.to_string()))?;
+        if !(d0 < kernel.support_radius() && kernel.value(d0) > 0.0) {
+            return fail(
+                "contact",
+                format!(
+                    "bodies `{}` and `{}`: the contact distance d0 = {d0:e} must lie inside the kernel support of h_c = {h_c:e}",
+                    ba.name, bb.name
+                ),
+            );
+        }
+        let law = PairLaw {
+            kernel,
+            d0,
+            coefficient: contact.scale * modulus(ba).min(modulus(bb)) * d0.powi(D as i32 - 1),
+        };
+        laws[a * nb + b] = Some(law);
+        laws[b * nb + a] = Some(law);
+    }
+    let body_of: Vec<u32> = (0..n_real)
+        .map(|i| {
+            bodies
+                .iter()
+                .position(|b| b.range.contains(&i))
+                .unwrap_or(0) as u32
+        })
+        .collect();
+    Ok(ParticleContact::new(contact.exponent, laws, nb, &body_of))
 }
 
 /// Effects that need the reference bonds or mirror particles, refused for the
@@ -1586,7 +1698,7 @@ fn first_index_where<T: Sync>(items: &[T], pred: impl Fn(&T) -> bool + Sync) -> 
         .find_map_first(|(c, chunk)| chunk.iter().position(&pred).map(|k| c * CHUNK + k))
 }
 
-fn min_by_value_then_index(a: (f64, usize), b: (f64, usize)) -> (f64, usize) {
+pub(crate) fn min_by_value_then_index(a: (f64, usize), b: (f64, usize)) -> (f64, usize) {
     // Total order (value, index) makes the reduction independent of how rayon splits it.
     match a.0.total_cmp(&b.0) {
         std::cmp::Ordering::Less => a,

@@ -3,6 +3,7 @@
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 
+mod contact;
 mod cuts;
 mod damage;
 mod kernel_groups;

@@ -6,11 +6,14 @@
 mod artificial_stress;
 mod hourglass;
 mod monaghan_viscosity;
+mod particle_contact;
 mod rigid_wall;
 
 pub use artificial_stress::MonaghanArtificialStress;
 pub use hourglass::HourglassControl;
 pub use monaghan_viscosity::MonaghanViscosity;
+pub(crate) use particle_contact::PairLaw;
+pub use particle_contact::{ParticleContact, CONTACT_SKIN_FRACTION};
 pub use rigid_wall::RigidWall;
 
 use crate::bonds::Bonds;
@@ -50,6 +53,17 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
     /// is booked directly instead of integrating the work, which for stiff, impulsive forces
     /// would carry the time-integration error of a few large steps.
     fn stored_energy(&self) -> Option<f64> {
+        None
+    }
+
+    /// The effect's vote on the next step, (Δt limit, limiting particle), evaluated at x^n
+    /// before the forces (numerics.md §7); `None` when it does not constrain the step.
+    fn time_step_limit(&mut self, _particles: &Particles<D>) -> Option<(f64, usize)> {
+        None
+    }
+
+    /// Candidate-list rebuilds so far, for an effect that searches pairs (contact).
+    fn contact_rebuilds(&self) -> Option<u64> {
         None
     }
 

@@ -2,18 +2,23 @@
 //!
 //! A counting global allocator counts only on threads that opted in (this test's thread and the
 //! workers of its own rayon pool), so tests running concurrently in this binary do not disturb
-//! the count.
+//! the count; the measuring tests take one lock, so two of them never count at the same time
+//! into the shared counter.
 
 use super::{lattice, model, Setup};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 use tlsph_math::Vector;
 use tlsph_solver::{BoundaryDescription, Formulation, Model, Simulation, StressUpdate};
 
 struct CountingAllocator;
 
 static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+/// Held while a test counts: the counter is shared by every opted-in thread.
+static MEASURING: Mutex<()> = Mutex::new(());
 
 thread_local! {
     // Const-initialised and without destructor, so reading it never allocates.
@@ -54,6 +59,7 @@ static GLOBAL: CountingAllocator = CountingAllocator;
 /// Allocations counted on this thread and the pool's workers while `steps` steps run, after
 /// two warm-up steps.
 fn allocations_during_steps<const D: usize>(model: Model<D>, steps: usize) -> usize {
+    let _measuring = MEASURING.lock().unwrap_or_else(|e| e.into_inner());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .start_handler(|_| COUNTED.with(|c| c.set(true)))
@@ -77,6 +83,7 @@ fn allocations_during_steps<const D: usize>(model: Model<D>, steps: usize) -> us
 
 #[test]
 fn the_counting_allocator_counts_on_opted_in_threads() {
+    let _measuring = MEASURING.lock().unwrap_or_else(|e| e.into_inner());
     COUNTED.with(|c| c.set(true));
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let v = std::hint::black_box(vec![1.0f64; 16]);
@@ -127,4 +134,44 @@ fn a_step_does_not_allocate_after_warm_up() {
             "{formulation:?}/{stress_update:?} 3D: {n} allocations"
         );
     }
+}
+
+#[test]
+fn a_contact_step_does_not_allocate_between_candidate_list_rebuilds() {
+    // Two blocks pressed together slowly: the contact is active (forces, energy, time-step
+    // vote every step) but nobody moves half the skin within the counted steps.
+    let dx = 0.02;
+    let mut m = model(
+        lattice([30, 20], dx),
+        dx,
+        |_| Vector::<2>::new(0.0, -0.01),
+        Setup::default(),
+    );
+    let mut top = m.bodies[0].clone();
+    top.name = "top".into();
+    top.positions = lattice([30, 20], dx)
+        .iter()
+        .map(|x| x + Vector::<2>::new(0.0, 20.0 * dx - 0.001 * dx))
+        .collect();
+    top.velocities = vec![Vector::<2>::new(0.0, -0.01); top.positions.len()];
+    m.bodies[0].velocities.fill(Vector::<2>::new(0.0, 0.01));
+    m.bodies.push(top);
+    m.effects.contact = Some(tlsph_solver::ContactDescription {
+        scale: 0.5,
+        exponent: 4.0,
+        pairs: None,
+    });
+    let mut sim = Simulation::new(m.clone()).unwrap();
+    for _ in 0..7 {
+        sim.step().unwrap();
+    }
+    assert_eq!(
+        sim.contact_rebuilds(),
+        Some(1),
+        "no rebuild after the first in 7 steps"
+    );
+    let d = sim.diagnostics();
+    assert!(d.effect_energies[0].1 > 0.0, "contact is active: {d:?}");
+    let n = allocations_during_steps(m, 5);
+    assert_eq!(n, 0, "{n} allocations");
 }

@@ -2,6 +2,7 @@
 //! and failure reporting.
 
 mod allocation;
+mod contact;
 mod damage;
 mod effects;
 mod long_runs;

@@ -1,0 +1,139 @@
+//! `[contact]` (numerics.md §12.2): parsed into the model, bad values named with field and
+//! line, and a run books a `contact` energy column.
+
+use super::{error_of, line_of};
+use std::fs;
+use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
+
+const TWO_BARS: &str = r#"
+[simulation]
+dimension = 1
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.5
+end_time = 1.5
+
+[[material]]
+name = "unit"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 0.9
+poisson_ratio = 0.2
+
+[[body]]
+name = "flyer"
+material = "unit"
+spacing = 0.02
+box = { min = [-0.5], max = [0.0] }
+velocity = [0.01]
+
+[[body]]
+name = "target"
+material = "unit"
+spacing = 0.02
+box = { min = [0.0], max = [1.0] }
+
+[contact]
+scale = 0.2
+pairs = [["flyer", "target"]]
+
+[output]
+energy_interval = 0.01
+"#;
+
+#[test]
+fn a_contact_table_becomes_the_contact_description() {
+    let scene = parse_scene(TWO_BARS, "scene.toml").unwrap();
+    let DimensionModel::One(model) = &scene.model else {
+        panic!("1D")
+    };
+    let c = model.effects.contact.as_ref().unwrap();
+    assert_eq!((c.scale, c.exponent), (0.2, 4.0));
+    assert_eq!(c.pairs, Some(vec![(0, 1)]));
+    let all = parse_scene(
+        &TWO_BARS.replace("pairs = [[\"flyer\", \"target\"]]", "exponent = 6"),
+        "scene.toml",
+    )
+    .unwrap();
+    let DimensionModel::One(model) = &all.model else {
+        panic!("1D")
+    };
+    let c = model.effects.contact.as_ref().unwrap();
+    assert_eq!((c.exponent, c.pairs.clone()), (6.0, None));
+}
+
+#[test]
+fn bad_contact_values_are_named_with_field_and_line() {
+    let cases = [
+        ("scale = 0.2", "scale = -0.2", "contact.scale"),
+        (
+            "scale = 0.2",
+            "scale = 0.2\nexponent = 0.5",
+            "contact.exponent",
+        ),
+        (
+            "pairs = [[\"flyer\", \"target\"]]",
+            "pairs = [[\"flyer\", \"anvil\"]]",
+            "contact.pairs",
+        ),
+        (
+            "pairs = [[\"flyer\", \"target\"]]",
+            "pairs = [[\"flyer\", \"flyer\"]]",
+            "contact.pairs",
+        ),
+        (
+            "pairs = [[\"flyer\", \"target\"]]",
+            "pairs = [[\"flyer\"]]",
+            "contact.pairs",
+        ),
+        // Same material in the updated-Lagrangian formulation: already kernel-coupled.
+        (
+            "formulation = \"total-lagrangian-corrected\"",
+            "formulation = \"updated-lagrangian\"",
+            "contact.pairs",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let text = TWO_BARS.replace(from, to);
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{to}: {e}");
+        let needle = if field == "contact.pairs" {
+            "pairs ="
+        } else {
+            to.lines().last().unwrap()
+        };
+        assert_eq!(e.line, Some(line_of(&text, needle)), "{to}: {e}");
+    }
+    // A missing scale is named by the TOML layer with its line.
+    let text = TWO_BARS.replace("scale = 0.2\n", "");
+    let e = error_of(&text);
+    assert!(e.message.contains("scale"), "{e}");
+    assert!(e.line.is_some(), "{e}");
+}
+
+#[test]
+fn a_contact_run_books_its_energy_column_and_closes() {
+    let scene = parse_scene(TWO_BARS, "scene.toml").unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
+    let mut lines = energy.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let contact = header.iter().position(|h| h.contains("contact")).unwrap();
+    let total = header.iter().position(|h| h.contains("total")).unwrap();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert!(
+        rows.iter().any(|r| r[contact] > 0.0),
+        "contact stored energy"
+    );
+    // Impact energy ½ m v² = ½ · 0.5 · 1e-4; total closes to 1.5 % of it (see the solver's
+    // contact tests for the bound).
+    let e0 = rows[0][total];
+    for r in &rows {
+        assert!((r[total] - e0).abs() < 1.5e-2 * e0, "{r:?}");
+    }
+}
