@@ -53,6 +53,14 @@ pub struct BondMetrics {
     pub max_stretch: f64,
     /// RMS of |F_I X_IJ − x_IJ|/|X_IJ| over bonds: the zero-energy (hourglass) distortion.
     pub hourglass_rms: f64,
+    /// Largest |x_IJ| / 2h0 over nearest-neighbour bonds (|X_IJ| ≤ 1.01 Δx of I's body):
+    /// above 1, a pair that started as lattice neighbours has left each other's kernel
+    /// support — numerical fracture in the sense of problems.md R-P7. Smooth deformation,
+    /// however large, moves it only by the stretch (a 50 % stretch gives 1.5Δx/2h0 = 0.5
+    /// at h = 1.5Δx).
+    pub max_nearest_bond_over_support: f64,
+    /// Nearest-neighbour bonds longer than 2h0 (each pair counted from both ends).
+    pub nearest_bonds_beyond_support: usize,
 }
 
 /// What one step did.
@@ -659,28 +667,42 @@ impl<const D: usize> Simulation<D> {
     /// hourglass diagnostics; one pass over the bonds, not part of a step):
     /// the smallest and largest bond stretch |x_IJ|/|X_IJ| over real–real bonds of surviving
     /// particles, and the RMS of the hourglass error |F_I X_IJ − x_IJ| / |X_IJ|
-    /// (numerics.md §10.5: zero for any deformation F reproduces exactly).
+    /// (numerics.md §10.5: zero for any deformation F reproduces exactly), and the
+    /// numerical-fracture measure of nearest-neighbour bonds (see [`BondMetrics`]).
     pub fn bond_metrics(&self) -> BondMetrics {
         let n = self.n_particles();
         let p = &self.particles;
         let alive = |i: usize| self.removed.is_empty() || !self.removed[i];
         let (mut min, mut max, mut sum_sq, mut count) = (f64::INFINITY, 0.0f64, 0.0f64, 0usize);
-        for i in (0..n).filter(|&i| alive(i)) {
-            let xi = p.positions0[i] + p.displacements[i];
-            for &j in self.bonds.neighbours_of(i) {
-                let j = j as usize;
-                if j >= n || !alive(j) {
-                    continue;
+        let (mut nearest_max, mut nearest_beyond) = (0.0f64, 0usize);
+        for info in &self.bodies {
+            // Lattice neighbours: |X_IJ| within 1 % of the body's spacing (R-P7).
+            let nearest0 = 1.01 * info.spacing;
+            let support = 2.0 * info.smoothing_length;
+            for i in info.range.clone().filter(|&i| alive(i)) {
+                let xi = p.positions0[i] + p.displacements[i];
+                for &j in self.bonds.neighbours_of(i) {
+                    let j = j as usize;
+                    if j >= n || !alive(j) {
+                        continue;
+                    }
+                    let big_x = p.positions0[i] - p.positions0[j];
+                    let small_x = xi - (p.positions0[j] + p.displacements[j]);
+                    let length0 = big_x.norm();
+                    let length = small_x.norm();
+                    let stretch = length / length0;
+                    min = min.min(stretch);
+                    max = max.max(stretch);
+                    let error = (p.deformation_gradient[i] * big_x - small_x).norm() / length0;
+                    sum_sq += error * error;
+                    count += 1;
+                    if length0 <= nearest0 {
+                        nearest_max = nearest_max.max(length / support);
+                        if length > support {
+                            nearest_beyond += 1;
+                        }
+                    }
                 }
-                let big_x = p.positions0[i] - p.positions0[j];
-                let small_x = xi - (p.positions0[j] + p.displacements[j]);
-                let length0 = big_x.norm();
-                let stretch = small_x.norm() / length0;
-                min = min.min(stretch);
-                max = max.max(stretch);
-                let error = (p.deformation_gradient[i] * big_x - small_x).norm() / length0;
-                sum_sq += error * error;
-                count += 1;
             }
         }
         BondMetrics {
@@ -691,6 +713,8 @@ impl<const D: usize> Simulation<D> {
             } else {
                 0.0
             },
+            max_nearest_bond_over_support: nearest_max,
+            nearest_bonds_beyond_support: nearest_beyond,
         }
     }
 

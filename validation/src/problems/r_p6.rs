@@ -183,6 +183,8 @@ fn run_model<const D: usize>(model: Model<D>, spacing: f64) -> TaylorRun {
             min_stretch: f64::NAN,
             max_stretch: f64::NAN,
             hourglass_rms: f64::NAN,
+            max_nearest_bond_over_support: f64::NAN,
+            nearest_bonds_beyond_support: 0,
         },
         cost: RunCost::default(),
         failure: None,

@@ -465,3 +465,58 @@ fn an_inverted_particle_is_reported() {
         other => panic!("unexpected error {other:?}"),
     }
 }
+
+#[test]
+fn bond_metrics_flag_lattice_neighbours_pulled_out_of_the_kernel_support() {
+    // Every particle is prescribed: the top row moves up at V, the rest stay, so the current
+    // lengths are exact. The vertical bonds between the top row and the row below are the
+    // only nearest-neighbour bonds that grow: (Δx + V t)/2h0; diagonals (|X| = √2 Δx) are
+    // not lattice neighbours and must not count.
+    let (nx, ny, dx) = (8, 6, 0.1);
+    let mut m = model(
+        lattice([nx, ny], dx),
+        dx,
+        |_| Vector::<2>::zeros(),
+        Setup::default(),
+    );
+    let top: Vec<usize> = (0..nx * ny).filter(|k| k % ny == ny - 1).collect();
+    let rest: Vec<usize> = (0..nx * ny).filter(|k| k % ny != ny - 1).collect();
+    let speed = 0.5;
+    m.boundaries.push(BoundaryDescription {
+        name: "pull".into(),
+        body: 0,
+        particles: top.clone(),
+        velocity: Vector::<2>::new(0.0, speed),
+        components: [true, true],
+    });
+    m.boundaries.push(BoundaryDescription {
+        name: "hold".into(),
+        body: 0,
+        particles: rest,
+        velocity: Vector::<2>::zeros(),
+        components: [true, true],
+    });
+    let mut sim = Simulation::new(m).unwrap();
+    sim.step().unwrap();
+    let support = 2.0 * 1.2 * dx;
+    let at_rest = sim.bond_metrics();
+    assert_relative_eq!(
+        at_rest.max_nearest_bond_over_support,
+        dx / support,
+        max_relative = 1e-12
+    );
+    assert_eq!(at_rest.nearest_bonds_beyond_support, 0);
+    while sim.time() * speed < 2.0 * dx {
+        sim.step().unwrap();
+    }
+    let lift = sim.displacements()[top[0]][1];
+    let pulled = sim.bond_metrics();
+    assert_relative_eq!(
+        pulled.max_nearest_bond_over_support,
+        (dx + lift) / support,
+        max_relative = 1e-12
+    );
+    // One vertical bond per top particle, counted from both ends.
+    assert_eq!(pulled.nearest_bonds_beyond_support, 2 * nx);
+    assert!(pulled.max_stretch > (dx + lift) / dx - 1e-12);
+}
