@@ -57,6 +57,11 @@ pub fn problems() -> Vec<Problem> {
             run: problems::r_p6::run,
         },
         Problem {
+            id: problems::r_p9a::ID,
+            title: "2D plate impact, Ti flyer on Al target at 660 m/s: TLSPH vs conventional SPH",
+            run: problems::r_p9a::run,
+        },
+        Problem {
             id: problems::r_c7x::ID,
             title: "XSPH vs artificial viscosity, symmetric steel rod impact",
             run: problems::r_c7x::run,

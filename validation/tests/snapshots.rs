@@ -14,13 +14,17 @@
 //! - R-P5 max |u|/Δx to 1e-5 and nearest-neighbour ratios to 1e-4 (TLSPH), the clumping time
 //!   of conventional SPH to 0.1 µs (an exponential instability seeded at 1e-6 Δx: a change of
 //!   the growth rate shows, round-off in the seed's growth does not);
+//! - R-P9a (quick tier) peak interface stress to 0.1 GPa (1.4 % of 7 GPa), the longest
+//!   lattice-neighbour bond / 2h0 and the target's max/min normalised nearest-neighbour ratio
+//!   to 0.01.
 //! - F-A12 / F-A13 (quick tier) damaged-area fractions to 1e-3 (about one particle of the
 //!   835–1521 particle quick lattices: a particle crossing D = 0.5 is a real change, while
 //!   round-off never moves a fraction by a whole particle unless D sits at 0.5 to the last
 //!   bit).
 
 use std::fmt::Write;
-use tlsph_validation::problems::{f_a1, f_a12, f_a13, fuller, r_p1, r_p2, r_p3, r_p4, r_p5};
+use tlsph_validation::problems::{f_a1, f_a12, f_a13, fuller, r_p1, r_p2, r_p3, r_p4, r_p5, r_p9a};
+use tlsph_validation::report::Tier;
 use tlsph_validation::variants::{sample_series, ALGORITHM_2, ALGORITHM_3};
 
 fn round(x: f64, quantum: f64) -> f64 {
@@ -311,5 +315,30 @@ fn f_a5_ring_nearest_neighbour_histories() {
         .unwrap();
     }
     writeln!(csv, "momentum_below_1e-12,{}", run.momentum_error < 1e-12).unwrap();
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn r_p9a_quick_impact_rows() {
+    // Interface stress to 0.1 GPa, geometric ratios to 0.01 (conventional SPH's clump
+    // spread, a ratio of ~40, to whole units).
+    let mut csv =
+        String::from("run,peak_interface_gpa,worst_lattice_bond_over_2h0,target_spread_18us\n");
+    for r in &r_p9a::runs(Tier::Quick) {
+        let spread = r.target_end.max_ratio / r.target_end.min_ratio;
+        writeln!(
+            csv,
+            "{},{:.1},{:.2},{}",
+            r.label,
+            round(r.peak_interface * 1e-9, 0.1),
+            round(r.worst_nearest_bond, 0.01),
+            if spread < 3.0 {
+                format!("{:.2}", round(spread, 0.01))
+            } else {
+                format!("{:.0}", round(spread, 1.0))
+            }
+        )
+        .unwrap();
+    }
     insta::assert_snapshot!(csv);
 }
