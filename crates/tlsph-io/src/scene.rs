@@ -725,9 +725,10 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
 }
 
 /// `[contact]` (numerics.md §12.2): scale a > 0, exponent n ≥ 1 (default 4), optional body
-/// pairs by name (default: every pair of different bodies). With the updated-Lagrangian
-/// formulation bodies of the same material already interact through the kernel, so naming
-/// such a pair is an error (and "all pairs" leaves them out).
+/// pairs by name (default: every pair of different bodies; a body paired with itself is
+/// self-contact). With the updated-Lagrangian formulation bodies of the same material, and
+/// every body with itself, already interact through the kernel, so naming such a pair is an
+/// error (and "all pairs" leaves them out).
 fn build_contact<const D: usize>(
     ctx: &Context<'_>,
     table: &Spanned<crate::scene_file::ContactTable>,
@@ -753,8 +754,12 @@ fn build_contact<const D: usize>(
             v
         }
     };
-    if bodies.len() < 2 {
-        return Err(ctx.error(&table.span(), "contact", "needs at least two bodies".into()));
+    if bodies.len() < 2 && c.pairs.is_none() {
+        return Err(ctx.error(
+            &table.span(),
+            "contact",
+            "needs at least two bodies, or `pairs` naming a body with itself (self-contact)".into(),
+        ));
     }
     let pairs = match &c.pairs {
         None => None,
@@ -776,8 +781,10 @@ fn build_contact<const D: usize>(
                     let missing = if find(a).is_none() { a } else { b };
                     return err(format!("no body named `{missing}`"));
                 };
-                if ia == ib {
-                    return err(format!("body `{a}` cannot be in contact with itself"));
+                if updated_lagrangian && ia == ib {
+                    return err(format!(
+                        "self-contact of body `{a}` needs a total-Lagrangian formulation: with formulation = \"updated-lagrangian\" a body already interacts with itself through the kernel"
+                    ));
                 }
                 if updated_lagrangian && group(ia) == group(ib) {
                     return err(format!(

@@ -1538,7 +1538,12 @@ fn build_effects<const D: usize>(
     }
     if let Some(contact) = &model.effects.contact {
         effects.push(BookedEffect {
-            effect: Box::new(build_contact(model, contact, bodies, n)?),
+            effect: Box::new(build_contact(
+                model,
+                contact,
+                bodies,
+                &particles.positions0[..n],
+            )?),
             energy: 0.0,
         });
     }
@@ -1576,15 +1581,18 @@ fn build_effects<const D: usize>(
 }
 
 /// The particle contact of numerics.md §12.2 for the declared body pairs (or every pair of
-/// different bodies). In the updated-Lagrangian formulation bodies that already interact
-/// through the kernel (same interaction group: same material, as in `UpdatedLagrangian`) get
-/// no contact: an explicit pair of them is an error, "all pairs" skips them.
+/// different bodies); a body paired with itself gets self-contact beyond its reference
+/// kernel support. In the updated-Lagrangian formulation bodies that already interact
+/// through the kernel (same interaction group: same material, as in `UpdatedLagrangian`, and
+/// every body with itself) get no contact: an explicit pair of them is an error, "all pairs"
+/// skips them.
 fn build_contact<const D: usize>(
     model: &Model<D>,
     contact: &crate::model::ContactDescription,
     bodies: &[BodyInfo],
-    n_real: usize,
+    positions0: &[Vector<D>],
 ) -> Result<ParticleContact<D>, SetupError> {
+    let n_real = positions0.len();
     let fail =
         |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
     if !(contact.scale.is_finite() && contact.scale > 0.0) {
@@ -1606,10 +1614,10 @@ fn build_contact<const D: usize>(
     let pairs: Vec<(usize, usize)> = match &contact.pairs {
         Some(pairs) => {
             for &(a, b) in pairs {
-                if a >= nb || b >= nb || a == b {
+                if a >= nb || b >= nb {
                     return fail(
                         "contact.pairs",
-                        format!("({a}, {b}) is not a pair of two different existing bodies"),
+                        format!("({a}, {b}) is not a pair of existing bodies"),
                     );
                 }
                 if kernel_linked(a, b) {
@@ -1653,6 +1661,7 @@ fn build_contact<const D: usize>(
             kernel,
             d0,
             coefficient: contact.scale * modulus(ba).min(modulus(bb)) * d0.powi(D as i32 - 1),
+            exclusion: if a == b { kernel.support_radius() } else { 0.0 },
         };
         laws[a * nb + b] = Some(law);
         laws[b * nb + a] = Some(law);
@@ -1665,7 +1674,13 @@ fn build_contact<const D: usize>(
                 .unwrap_or(0) as u32
         })
         .collect();
-    Ok(ParticleContact::new(contact.exponent, laws, nb, &body_of))
+    Ok(ParticleContact::new(
+        contact.exponent,
+        laws,
+        nb,
+        &body_of,
+        positions0,
+    ))
 }
 
 /// Effects that need the reference bonds or mirror particles, refused for the

@@ -12,6 +12,11 @@
 //! Both particles of a pair evaluate the same scalar from the same |x_I − x_K| (negation is
 //! exact), so pair forces are equal and opposite bit for bit and linear momentum is conserved
 //! to round-off.
+//!
+//! A body paired with itself gets self-contact (a TLSPH body folding onto itself, whose
+//! particles would otherwise pass through each other): the same law between its particles
+//! that were not kernel neighbours in the reference configuration (|X_I − X_K| ≥ 2h), so
+//! self-contact never acts inside the continuum, only between surfaces that meet.
 
 use super::{Effect, EffectContext};
 use crate::particles::Particles;
@@ -69,6 +74,9 @@ pub(crate) struct PairLaw {
     pub d0: f64,
     /// a M* d0^{d−1} \[N\] (force per unit depth in 2D, N/m² · m in 1D).
     pub coefficient: f64,
+    /// Self-contact only: pairs closer than this in the reference configuration (the
+    /// kernel support 2h) are the body's own continuum and never in contact \[m\].
+    pub exclusion: f64,
 }
 
 /// The law evaluated at one distance: force magnitude, potential and tangent stiffness.
@@ -105,6 +113,8 @@ struct Law {
     inv_w0: f64,
     /// Normal stiffness at first touch, −df/dr at r = d0 \[N/m\].
     touch_stiffness: f64,
+    /// Squared reference-distance exclusion of self-contact (0 between different bodies).
+    exclusion_sq: f64,
 }
 
 impl Law {
@@ -163,6 +173,8 @@ pub struct ParticleContact<const D: usize> {
     local: Vec<u32>,
     /// Body of each participant.
     body: Vec<u32>,
+    /// Reference positions of the participants (self-contact exclusion).
+    positions0: Vec<Vector<D>>,
     /// Body whose contact force is reported as the resultant.
     reported_body: u32,
     skin: f64,
@@ -190,14 +202,16 @@ pub struct ParticleContact<const D: usize> {
 
 impl<const D: usize> ParticleContact<D> {
     /// Contact with exponent n between the body pairs that have a law in `laws`
-    /// (`n_bodies`² entries, symmetric); `body_of` gives the body of each of the `n_real`
-    /// real particles. The resultant reported is the contact force on the lowest-index body
-    /// that takes part.
+    /// (`n_bodies`² entries, symmetric; a diagonal entry is self-contact); `body_of` gives the
+    /// body of each of the `n_real` real particles and `positions0` their reference
+    /// positions. The resultant reported is the contact force on the lowest-index body that
+    /// takes part.
     pub(crate) fn new(
         exponent: f64,
         laws: Vec<Option<PairLaw>>,
         n_bodies: usize,
         body_of: &[u32],
+        positions0: &[Vector<D>],
     ) -> Self {
         let laws: Vec<Option<Law>> = laws
             .into_iter()
@@ -211,6 +225,7 @@ impl<const D: usize> ParticleContact<D> {
                         * exponent
                         * (-l.kernel.derivative(l.d0)).max(0.0)
                         / l.kernel.value(l.d0),
+                    exclusion_sq: l.exclusion * l.exclusion,
                 })
             })
             .collect();
@@ -218,11 +233,13 @@ impl<const D: usize> ParticleContact<D> {
         let mut local = vec![u32::MAX; body_of.len()];
         let mut participants = Vec::new();
         let mut body = Vec::new();
+        let mut reference = Vec::new();
         for (i, &b) in body_of.iter().enumerate() {
             if takes_part(b as usize) {
                 local[i] = participants.len() as u32;
                 participants.push(i as u32);
                 body.push(b);
+                reference.push(positions0[i]);
             }
         }
         let d0s = laws.iter().flatten().map(|l| l.d0);
@@ -244,6 +261,7 @@ impl<const D: usize> ParticleContact<D> {
             participants,
             local,
             body,
+            positions0: reference,
             skin,
             radius: max_d0 + skin,
             positions: vec![Vector::zeros(); n],
@@ -356,8 +374,9 @@ impl<const D: usize> ParticleContact<D> {
         self.evaluated = true;
     }
 
-    /// Rebuilds the candidate lists: every participant of another body in contact within
-    /// `radius`, ascending. Allocates only the cell grid (and the lists if they grow).
+    /// Rebuilds the candidate lists: every participant of another body in contact (or of
+    /// the same body with self-contact, beyond its reference exclusion) within `radius`,
+    /// ascending. Allocates only the cell grid (and the lists if they grow).
     fn rebuild(&mut self) {
         self.offsets.clear();
         self.candidates.clear();
@@ -368,12 +387,18 @@ impl<const D: usize> ParticleContact<D> {
             for (k, x) in self.positions.iter().enumerate() {
                 let start = self.candidates.len();
                 let bk = self.body[k];
+                let x0 = self.positions0[k];
                 grid.for_each_candidate_with_position(x, |j, xj| {
                     let bj = self.body[j as usize];
-                    if bj != bk
-                        && self.laws[bk as usize * self.n_bodies + bj as usize].is_some()
-                        && (xj - x).norm_squared() < r2
-                    {
+                    let Some(law) = &self.laws[bk as usize * self.n_bodies + bj as usize] else {
+                        return;
+                    };
+                    // Self-contact: never between reference kernel neighbours (nor I with
+                    // itself); the exclusion is 0 between different bodies.
+                    let own_continuum = bj == bk
+                        && (self.positions0[j as usize] - x0).norm_squared()
+                            < law.exclusion_sq.max(f64::MIN_POSITIVE);
+                    if !own_continuum && (xj - x).norm_squared() < r2 {
                         self.candidates.push(j);
                     }
                 });

@@ -295,13 +295,14 @@ fn a_stiff_contact_limits_the_time_step_and_stays_stable() {
 fn contact_setup_errors_name_the_field() {
     let field_of = |m: Model<2>| match Simulation::new(m) {
         Err(SetupError::InvalidConfig { field, message }) => (field, message),
-        other => panic!("expected a config error, got {other:?}"),
+        Err(other) => panic!("expected a config error, got {other}"),
+        Ok(_) => panic!("expected a config error, got a valid simulation"),
     };
     let mut m = oblique_blocks(Formulation::TotalLagrangianCorrected, 0.5, 1.0);
     m.effects.contact.as_mut().unwrap().scale = -1.0;
     assert_eq!(field_of(m).0, "contact.scale");
     let mut m = oblique_blocks(Formulation::TotalLagrangianCorrected, 0.5, 1.0);
-    m.effects.contact.as_mut().unwrap().pairs = Some(vec![(0, 0)]);
+    m.effects.contact.as_mut().unwrap().pairs = Some(vec![(0, 5)]);
     assert_eq!(field_of(m).0, "contact.pairs");
     // Same material in the updated-Lagrangian formulation: they already interact through the
     // kernel, so an explicit contact pair is refused ...
@@ -327,4 +328,128 @@ fn without_contact_nothing_is_built() {
     sim.step().unwrap();
     assert_eq!(sim.contact_rebuilds(), None);
     assert!(sim.diagnostics().effect_energies.is_empty());
+}
+
+/// Two blocks of one material and spacing, 3Δx apart (beyond the kernel support 2h = 2.4Δx,
+/// so no reference bond joins them), closing at 0.06: as two bodies in contact, or as one
+/// body (both blocks) with self-contact.
+fn two_blocks(as_one_body: bool) -> Model<2> {
+    let dx = 0.05;
+    let a: Vec<Vector<2>> = lattice([8, 6], dx)
+        .iter()
+        .map(|x| x - Vector::<2>::new(8.0 * dx + 1.5 * dx, 0.0))
+        .collect();
+    let b: Vec<Vector<2>> = lattice([8, 6], dx)
+        .iter()
+        .map(|x| x + Vector::<2>::new(1.5 * dx, 0.01))
+        .collect();
+    let velocities: Vec<Vector<2>> = (0..a.len())
+        .map(|_| Vector::<2>::new(0.03, 0.0))
+        .chain((0..b.len()).map(|_| Vector::<2>::new(-0.03, 0.0)))
+        .collect();
+    let bodies = if as_one_body {
+        let mut one = body("both", 0, [a, b].concat(), dx, Vector::<2>::zeros());
+        one.velocities = velocities;
+        vec![one]
+    } else {
+        let n = a.len();
+        let mut first = body("a", 0, a, dx, Vector::<2>::zeros());
+        let mut second = body("b", 0, b, dx, Vector::<2>::zeros());
+        first.velocities = velocities[..n].to_vec();
+        second.velocities = velocities[n..].to_vec();
+        vec![first, second]
+    };
+    Model {
+        config: config(Formulation::TotalLagrangianCorrected, 4.0),
+        materials: materials(),
+        bodies,
+        boundaries: vec![],
+        effects: tlsph_solver::EffectsDescription {
+            contact: Some(ContactDescription {
+                scale: 0.5,
+                exponent: 4.0,
+                pairs: Some(if as_one_body {
+                    vec![(0, 0)]
+                } else {
+                    vec![(0, 1)]
+                }),
+            }),
+            ..Default::default()
+        },
+    }
+}
+
+#[test]
+fn self_contact_of_two_unbonded_parts_of_one_body_equals_contact_between_two_bodies() {
+    // Same particles, same bonds (none joins the blocks), same pair law and candidate order:
+    // self-contact must reproduce the two-body contact bit for bit, and it must act (the
+    // blocks rebound instead of passing through each other).
+    let run = |one: bool| {
+        let mut sim = Simulation::new(two_blocks(one)).unwrap();
+        let mut touched = false;
+        sim.run(|s, _| touched |= s.diagnostics().effect_energies[0].1 > 0.0)
+            .unwrap();
+        (sim.displacements().to_vec(), touched, sim.velocity(0))
+    };
+    let (u_two, touched_two, v_two) = run(false);
+    let (u_one, touched_one, v_one) = run(true);
+    assert!(touched_two && touched_one, "the blocks never touched");
+    assert_eq!(u_one, u_two, "self-contact differs from two-body contact");
+    assert_eq!(v_one, v_two);
+    assert!(v_one[0] < 0.0, "block a did not rebound: {v_one}");
+}
+
+#[test]
+fn self_contact_never_acts_inside_the_continuum() {
+    // A single block squeezed in x: its particles approach each other, but all of them are
+    // reference kernel neighbours or farther than the contact distance, so no pair is ever a
+    // candidate that touches and no energy is stored.
+    let dx = 0.05;
+    let positions = lattice([10, 6], dx);
+    let velocities: Vec<Vector<2>> = positions
+        .iter()
+        .map(|x| Vector::<2>::new(-(x[0] - 0.25), 0.0))
+        .collect();
+    let mut block = body("block", 0, positions, dx, Vector::<2>::zeros());
+    block.velocities = velocities;
+    let model = Model {
+        config: config(Formulation::TotalLagrangianCorrected, 1.0),
+        materials: materials(),
+        bodies: vec![block],
+        boundaries: vec![],
+        effects: tlsph_solver::EffectsDescription {
+            contact: Some(ContactDescription {
+                scale: 0.5,
+                exponent: 4.0,
+                pairs: Some(vec![(0, 0)]),
+            }),
+            ..Default::default()
+        },
+    };
+    let mut sim = Simulation::new(model).unwrap();
+    let (mut stored, mut squeeze): (f64, f64) = (0.0, 1.0);
+    sim.run(|s, _| {
+        stored = stored.max(s.diagnostics().effect_energies[0].1);
+        squeeze = squeeze.min(s.deformation_gradients()[30][(0, 0)]);
+    })
+    .unwrap();
+    assert_eq!(stored, 0.0);
+    assert!(
+        squeeze < 0.9,
+        "the block was not squeezed: F_xx ≥ {squeeze}"
+    );
+}
+
+#[test]
+fn self_contact_is_refused_for_the_updated_lagrangian_formulation() {
+    let mut m = two_blocks(true);
+    m.config.formulation = Formulation::UpdatedLagrangian;
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig { field, message }) => {
+            assert_eq!(field, "contact.pairs");
+            assert!(message.contains("kernel"), "{message}");
+        }
+        Err(other) => panic!("expected a contact.pairs error, got {other}"),
+        Ok(_) => panic!("expected a contact.pairs error, got a valid simulation"),
+    }
 }
