@@ -23,7 +23,9 @@
 //!   bit).
 
 use std::fmt::Write;
-use tlsph_validation::problems::{f_a1, f_a12, f_a13, fuller, r_p1, r_p2, r_p3, r_p4, r_p5, r_p9a};
+use tlsph_validation::problems::{
+    f_a1, f_a12, f_a13, fuller, fuller_scenes, r_p1, r_p2, r_p3, r_p4, r_p5, r_p9a,
+};
 use tlsph_validation::report::Tier;
 use tlsph_validation::variants::{sample_series, ALGORITHM_2, ALGORITHM_3};
 
@@ -260,7 +262,7 @@ fn f_a3_disc_rebound_velocities() {
     let mut csv =
         String::from("mass_ratio,speed_c,va_over_u,vb_over_u,separated,momentum_below_1e-12\n");
     for mass_b in [0.1, 0.5] {
-        let run = f_a3::simulate(mass_b, 0.01);
+        let run = f_a3::simulate(fuller_scenes::Mode::Thesis, mass_b, 0.01);
         writeln!(
             csv,
             "{:.2},0.01,{:.3},{:.3},{},{}",
@@ -271,6 +273,30 @@ fn f_a3_disc_rebound_velocities() {
             run.momentum_error < 1e-12
         )
         .unwrap();
+    }
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn f_a3_tl_mode_rebound_velocities() {
+    // TLSPH discs in particle contact: V/U to 1e-3 (0.1 % of U; the rebound of r = 10 moves
+    // by 2 % between lattice resolutions, so a real change of the contact or the hourglass
+    // control shows), and the speed independence of linear elasticity.
+    use tlsph_validation::problems::f_a3;
+    let mut csv = String::from("mass_ratio,speed_c,va_over_u,vb_over_u,momentum_below_1e-12\n");
+    for speed in [0.01, 0.0001] {
+        for mass_b in [0.1, 0.5] {
+            let run = f_a3::simulate(fuller_scenes::Mode::TotalLagrangian, mass_b, speed);
+            writeln!(
+                csv,
+                "{:.2},{speed},{:.3},{:.3},{}",
+                run.ratio,
+                round(run.velocities.0, 1e-3),
+                round(run.velocities.1, 1e-3),
+                run.momentum_error < 1e-12
+            )
+            .unwrap();
+        }
     }
     insta::assert_snapshot!(csv);
 }
@@ -315,6 +341,23 @@ fn f_a5_ring_nearest_neighbour_histories() {
         .unwrap();
     }
     writeln!(csv, "momentum_below_1e-12,{}", run.momentum_error < 1e-12).unwrap();
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn f_a5_tl_mode_rings() {
+    // TLSPH rings in contact and self-contact: rebound velocities to 1e-3 of U (0.0001),
+    // geometric ratios to 0.01.
+    use tlsph_validation::problems::f_a5;
+    let run = f_a5::simulate_tl(f_a5::TL_END_TIME);
+    let csv = format!(
+        "final_va,final_vb,worst_lattice_bond_over_2h0,min_normalised_ratio,momentum_below_1e-12\n{:.4},{:.4},{:.2},{:.2},{}\n",
+        round(run.final_velocities.0, 1e-4),
+        round(run.final_velocities.1, 1e-4),
+        round(run.worst_lattice_bond, 0.01),
+        round(run.min_ratio.0.min(run.min_ratio.1), 0.01),
+        run.momentum_error < 1e-12
+    );
     insta::assert_snapshot!(csv);
 }
 

@@ -76,6 +76,63 @@ pub fn thesis_effects(xsph: Option<f64>, artificial_stress: Option<&[&str]>) -> 
     text
 }
 
+/// How the bodies of a Fuller multi-body problem interact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Fuller's scheme: updated-Lagrangian SPH, kernel interaction across the discs, XSPH,
+    /// viscosity and artificial stress.
+    Thesis,
+    /// Separate TLSPH bodies (corrected gradients) in particle contact (numerics.md §12.2)
+    /// with hourglass control; no XSPH, no viscosity, no artificial stress (no tensile
+    /// instability to correct).
+    TotalLagrangian,
+}
+
+impl Mode {
+    /// Label in rows and curves.
+    pub fn label(self) -> &'static str {
+        match self {
+            Mode::Thesis => "thesis mode",
+            Mode::TotalLagrangian => "TL mode",
+        }
+    }
+
+    /// Distance between two particles at which the bodies interact \[Δx\]: the kernel
+    /// support 2h (thesis) or the contact distance d0 = Δx (TL).
+    pub fn reach(self) -> f64 {
+        match self {
+            Mode::Thesis => 2.0 * SMOOTHING,
+            Mode::TotalLagrangian => 1.0,
+        }
+    }
+}
+
+/// Contact scale a of TL mode `[C]`: F-A3's rebound velocities move by < 3 % between a = 0.05
+/// and 2.0 (the Reveles P8/P10 card), while a = 2.0 costs 3× the steps (the contact's
+/// time-step vote); 0.5 keeps the CFL step.
+pub const CONTACT_SCALE: f64 = 0.5;
+
+/// Hourglass-control coefficient of TL mode `[C]` (Ganzenmüller penalty, numerics.md
+/// §10.5). Contact forces act on single surface particles and excite TLSPH's zero-energy
+/// modes in the face layer; uncontrolled, the faces chatter and the rebound loses its
+/// resolution convergence (in the F-A3 study run to choose this value, V_B/U at r = 10 was 1.45,
+/// 0.99 and below 0.9 at R/Δx = 12, 24, 48).
+/// With α = 1 the rebound converges (see F-A3's full-tier resolution notes).
+pub const HOURGLASS: f64 = 1.0;
+
+/// TL mode's effects: the particle contact between the named body pairs (a body named
+/// twice: self-contact) and hourglass control.
+pub fn tl_contact_effects(pairs: &[(&str, &str)]) -> String {
+    let pairs: Vec<String> = pairs
+        .iter()
+        .map(|(a, b)| format!("[\"{a}\", \"{b}\"]"))
+        .collect();
+    format!(
+        "\n[contact]\nscale = {CONTACT_SCALE}\npairs = [{}]\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
+        pairs.join(", ")
+    )
+}
+
 /// Parses a 2D scene written by this harness.
 pub fn parse(text: &str, what: &str) -> Model<2> {
     match parse_scene(text, what).map(|s| s.model) {
@@ -89,22 +146,29 @@ pub fn parse(text: &str, what: &str) -> Model<2> {
 /// inner < sqrt(i² + j²) < outer (inner < 0 for a full disc). R = 12 gives Fuller's 437
 /// particles; the ring 30 < r < 35 gives 1020 (thesis 1018).
 pub fn integer_ring(centre: Vector<2>, inner: f64, outer: f64) -> Vec<Vector<2>> {
+    lattice_ring(centre, inner, outer, 1.0)
+}
+
+/// The same lattice refined: offsets (i, j)·Δx with inner < Δx sqrt(i² + j²) < outer, for
+/// resolution studies of the thesis shapes.
+pub fn lattice_ring(centre: Vector<2>, inner: f64, outer: f64, spacing: f64) -> Vec<Vector<2>> {
+    let (inner, outer) = (inner / spacing, outer / spacing);
     let m = outer.ceil() as i64;
     let mut points = Vec::new();
     for i in -m..=m {
         for j in -m..=m {
             let r = ((i * i + j * j) as f64).sqrt();
             if r > inner && r < outer {
-                points.push(centre + Vector::<2>::new(i as f64, j as f64));
+                points.push(centre + Vector::<2>::new(i as f64, j as f64) * spacing);
             }
         }
     }
     points
 }
 
-/// Replaces body `body`'s particles by `positions` (unit volumes, Δx = 1) with velocities
-/// `velocity(x)`; the scene gave the body a placeholder shape. Boundaries of the body must
-/// not be declared (their particle indices would refer to the placeholder).
+/// Replaces body `body`'s particles by `positions` (volumes Δx² of the body's `spacing`) with
+/// velocities `velocity(x)`; the scene gave the body a placeholder shape. Boundaries of the
+/// body must not be declared (their particle indices would refer to the placeholder).
 pub fn set_particles(
     model: &mut Model<2>,
     body: usize,
@@ -114,7 +178,7 @@ pub fn set_particles(
     let b = &mut model.bodies[body];
     assert!(model.boundaries.iter().all(|s| s.body != body));
     b.velocities = positions.iter().map(velocity).collect();
-    b.volumes = vec![1.0; positions.len()];
+    b.volumes = vec![b.spacing * b.spacing; positions.len()];
     b.positions = positions;
 }
 
