@@ -63,6 +63,19 @@ pub struct BondMetrics {
     pub nearest_bonds_beyond_support: usize,
 }
 
+impl BondMetrics {
+    /// Metrics of no measurement yet: NaN ratios, no bond beyond the support.
+    pub fn undefined() -> Self {
+        Self {
+            min_stretch: f64::NAN,
+            max_stretch: f64::NAN,
+            hourglass_rms: f64::NAN,
+            max_nearest_bond_over_support: f64::NAN,
+            nearest_bonds_beyond_support: 0,
+        }
+    }
+}
+
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepReport {
