@@ -372,13 +372,7 @@ impl<const D: usize> Simulation<D> {
         };
         let effects = build_effects(&model, &bodies, &kernels, &particles, &bonds, n_real)?;
         let updated = updated_lagrangian.then(|| {
-            let body_of = |i: usize| {
-                bodies
-                    .iter()
-                    .position(|b| b.range.contains(&i))
-                    .unwrap_or(0)
-            };
-            let body: Vec<u32> = (0..n_real).map(|i| body_of(i) as u32).collect();
+            let body = body_indices(&bodies, n_real);
             let group = body
                 .iter()
                 .map(|&b| model.kernel_group(b as usize) as u32)
@@ -659,12 +653,7 @@ impl<const D: usize> Simulation<D> {
         self.failed_count += newly.len();
         let bodies = &self.bodies;
         let kernels = &self.kernels;
-        let body_of = |i: usize| {
-            bodies
-                .iter()
-                .position(|b| b.range.contains(&i))
-                .unwrap_or(0)
-        };
+        let body_of = |i: usize| body_index(bodies, i);
         self.bonds.remove_failed(
             &newly,
             &self.removed,
@@ -1135,10 +1124,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Index of the body that owns global particle `i`.
     pub fn body_of(&self, i: usize) -> usize {
-        self.bodies
-            .iter()
-            .position(|b| b.range.contains(&i))
-            .expect("every particle belongs to a body")
+        body_index(&self.bodies, i)
     }
 
     /// Energies and momenta at the current time (sequential sums: thread-count independent).
@@ -1431,6 +1417,25 @@ fn impose_on<const D: usize>(prescribed: &[PrescribedSet<D>], velocities: &mut [
 /// Chunk length of deterministic parallel reductions and searches.
 const CHUNK: usize = 4096;
 
+/// Index of the body owning global particle `i` (bodies are contiguous index ranges; a few
+/// bodies, so a linear search: for lookups outside per-particle loops).
+fn body_index(bodies: &[BodyInfo], i: usize) -> usize {
+    bodies
+        .iter()
+        .position(|b| b.range.contains(&i))
+        .expect("every particle belongs to a body")
+}
+
+/// The body of each of the first `n` particles, filled range by range (O(n)).
+fn body_indices(bodies: &[BodyInfo], n: usize) -> Vec<u32> {
+    let mut of = vec![0u32; n];
+    for (b, info) in bodies.iter().enumerate() {
+        let r = info.range.start.min(n)..info.range.end.min(n);
+        of[r].fill(b as u32);
+    }
+    of
+}
+
 /// Builds the declared effects (none declared: an empty list, nothing allocated).
 fn build_effects<const D: usize>(
     model: &Model<D>,
@@ -1442,12 +1447,7 @@ fn build_effects<const D: usize>(
 ) -> Result<Vec<BookedEffect<D>>, SetupError> {
     let mut effects: Vec<BookedEffect<D>> = Vec::new();
     let n = n_real;
-    let body_of = |i: usize| {
-        bodies
-            .iter()
-            .position(|b| b.range.contains(&i))
-            .expect("every particle belongs to a body")
-    };
+    let body_of = |i: usize| body_index(bodies, i);
     let per_particle = |f: &dyn Fn(&BodyInfo) -> f64| -> Vec<f64> {
         (0..n).map(|i| f(&bodies[body_of(i)])).collect()
     };
@@ -1494,7 +1494,7 @@ fn build_effects<const D: usize>(
                 alpha,
                 beta,
                 kernels.to_vec(),
-                (0..n).map(|i| body_of(i) as u32).collect(),
+                body_indices(bodies, n),
                 bodies.iter().map(|b| b.density0).collect(),
                 bodies.iter().map(|b| b.sound_speed0).collect(),
             )),
@@ -1539,7 +1539,7 @@ fn build_effects<const D: usize>(
                 a.exponent,
                 carries,
                 feels,
-                (0..n).map(|i| body_of(i) as u32).collect(),
+                body_indices(bodies, n),
                 bodies
                     .iter()
                     .zip(kernels)
@@ -1679,19 +1679,11 @@ fn build_contact<const D: usize>(
         laws[a * nb + b] = Some(law);
         laws[b * nb + a] = Some(law);
     }
-    let body_of: Vec<u32> = (0..n_real)
-        .map(|i| {
-            bodies
-                .iter()
-                .position(|b| b.range.contains(&i))
-                .unwrap_or(0) as u32
-        })
-        .collect();
     Ok(ParticleContact::new(
         contact.exponent,
         laws,
         nb,
-        &body_of,
+        &body_indices(bodies, n_real),
         positions0,
     ))
 }
