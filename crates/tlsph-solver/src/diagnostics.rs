@@ -31,4 +31,13 @@ impl Diagnostics {
     pub fn total_energy(&self) -> f64 {
         self.kinetic + self.internal + self.effect_energies.iter().map(|(_, e)| e).sum::<f64>()
     }
+
+    /// The resultant force of the effect called `name` (e.g. `"contact"`, a wall's name)
+    /// \[N\], zero if no such effect reports one.
+    pub fn effect_force(&self, name: &str) -> Vector3 {
+        self.effect_forces
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(Vector3::zeros(), |(_, f)| *f)
+    }
 }

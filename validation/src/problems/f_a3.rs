@@ -160,8 +160,13 @@ pub fn simulate_at(mode: Mode, mass_b: f64, speed: f64, spacing: f64) -> Collisi
         }
         let p = total(&sim);
         run.momentum_error = run.momentum_error.max((p - p0).norm() / p0.norm());
-        let d = gap(&sim, 0, 1);
-        if touched.is_none() && d < reach {
+        // TL mode: a pair within d0 is exactly a non-zero contact force, a pass over the
+        // particles instead of the all-pairs distance search the kernel reach needs.
+        let in_reach = match mode {
+            Mode::Thesis => gap(&sim, 0, 1) < reach,
+            Mode::TotalLagrangian => sim.diagnostics().effect_force("contact").norm() > 0.0,
+        };
+        if touched.is_none() && in_reach {
             touched = Some(t);
         }
         if let Some(t0) = touched {
@@ -175,7 +180,7 @@ pub fn simulate_at(mode: Mode, mass_b: f64, speed: f64, spacing: f64) -> Collisi
             }
             // Apart = out of reach while B moves away from A; a touch again (a surface
             // particle bouncing back, the discs still closing) resets it.
-            if d < reach {
+            if in_reach {
                 released = None;
             } else if released.is_none() && vb > va {
                 released = Some(t);

@@ -146,12 +146,7 @@ fn simulate_scene(text: &str, mode: Mode) -> RingsRun {
             ));
         }
     }
-    run.final_contact_force = sim
-        .diagnostics()
-        .effect_forces
-        .iter()
-        .find(|(n, _)| n == "contact")
-        .map_or(0.0, |(_, f)| f.norm());
+    run.final_contact_force = sim.diagnostics().effect_force("contact").norm();
     run.final_velocities = (
         body_sums(&sim, 0).velocity()[0],
         body_sums(&sim, 1).velocity()[0],

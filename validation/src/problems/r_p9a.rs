@@ -245,11 +245,7 @@ pub fn simulate(scheme: Scheme, spacing: f64) -> ImpactRun {
         }
         let d = sim.diagnostics();
         // Contact force on the flyer (body 0); its −x component presses on the target.
-        let stress = d
-            .effect_forces
-            .iter()
-            .find(|(n, _)| n == "contact")
-            .map_or(0.0, |(_, f)| -f.x / HEIGHT);
+        let stress = -d.effect_force("contact").x / HEIGHT;
         run.peak_interface = run.peak_interface.max(stress);
         run.interface.push((sim.time() * 1e6, stress * 1e-9));
         if sim.time() >= next_sample || sim.finished() {
