@@ -21,10 +21,15 @@
 //!   835–1521 particle quick lattices: a particle crossing D = 0.5 is a real change, while
 //!   round-off never moves a fraction by a whole particle unless D sits at 0.5 to the last
 //!   bit).
+//! - R-P6 (quick tier, 2D plane strain at 0.74 mm) final length and foot width to 0.1 mm
+//!   (0.3 % of the 3 cm length, a twentieth of the ±2 mm band), the outline's half-width to
+//!   0.01 mm, the tip height every 10 µs to 0.01 mm and the largest plastic strain to 0.01;
+//! - R-C7X (quick tier) gauge stress every 0.25 µs to 0.01 GPa (0.2 % of the 4.375 GPa
+//!   plateau), the plateau to 0.01 GPa, the overshoot to 1e-3 and the rise time to 1 ns.
 
 use std::fmt::Write;
 use tlsph_validation::problems::{
-    f_a1, f_a12, f_a13, fuller, fuller_scenes, r_p1, r_p2, r_p3, r_p4, r_p5, r_p9a,
+    f_a1, f_a12, f_a13, fuller, fuller_scenes, r_c7x, r_p1, r_p2, r_p3, r_p4, r_p5, r_p6, r_p9a,
 };
 use tlsph_validation::report::Tier;
 use tlsph_validation::variants::{sample_series, ALGORITHM_2, ALGORITHM_3};
@@ -382,6 +387,66 @@ fn r_p9a_quick_impact_rows() {
             }
         )
         .unwrap();
+    }
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn r_p6_quick_taylor_bar() {
+    let run = r_p6::simulate_2d(0.74e-3, r_p6::TANGENT_MODULUS);
+    assert!(run.failure.is_none(), "{:?}", run.failure);
+    let mut csv = String::new();
+    writeln!(
+        csv,
+        "final_length_mm,{:.1}\nfoot_width_mm,{:.1}\nmax_plastic_strain,{:.2}",
+        round(run.final_length * 1e3, 0.1),
+        round(run.final_diameter * 1e3, 0.1),
+        round(run.max_plastic_strain, 0.01)
+    )
+    .unwrap();
+    csv.push_str("height_mm,outline_half_width_mm\n");
+    for (z, w) in run.outline.iter().step_by(4) {
+        writeln!(
+            csv,
+            "{:.2},{:.2}",
+            round(z * 1e3, 0.01),
+            round(w * 1e3, 0.01)
+        )
+        .unwrap();
+    }
+    csv.push_str("time_us,tip_height_mm\n");
+    let (times, tips): (Vec<f64>, Vec<f64>) = run.tip_history.iter().copied().unzip();
+    for k in 0..=15 {
+        let t = 10e-6 * k as f64;
+        let z = sample_series(&times, &tips, t);
+        writeln!(csv, "{:.0},{:.2}", t * 1e6, round(z * 1e3, 0.01)).unwrap();
+    }
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn r_c7x_quick_wave_profiles() {
+    let mut csv = String::new();
+    for (formulation, name) in r_c7x::FORMULATIONS {
+        for smoothing in r_c7x::Smoothing::ALL {
+            let run = r_c7x::simulate(smoothing, 50, formulation);
+            writeln!(
+                csv,
+                "{name} {}: plateau_GPa {:.2}, overshoot {:.3}, rise_ns {:.0}",
+                smoothing.label(),
+                round(r_c7x::plateau(&run) * 1e-9, 0.01),
+                round(r_c7x::overshoot(&run), 1e-3),
+                round(r_c7x::rise_width(&run) * 1e9, 1.0)
+            )
+            .unwrap();
+            let samples: Vec<String> = (0..=24)
+                .map(|k| {
+                    let s = sample_series(&run.times, &run.stress, 0.25e-6 * k as f64);
+                    format!("{:.2}", round(s * 1e-9, 0.01))
+                })
+                .collect();
+            writeln!(csv, "  stress_GPa every 0.25 us: {}", samples.join(" ")).unwrap();
+        }
     }
     insta::assert_snapshot!(csv);
 }
