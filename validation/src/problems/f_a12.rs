@@ -80,7 +80,7 @@ pub fn simulate(dx: f64) -> DamageRun {
         },
     ];
     let model_law = GradyKipp::new(WEIBULL_M, WEIBULL_K).expect("F-A12 parameters are valid");
-    let model = fuller::model(
+    let mut model = fuller::model(
         positions,
         dx,
         DamageModel::GradyKipp {
@@ -90,6 +90,7 @@ pub fn simulate(dx: f64) -> DamageRun {
         loads,
         END_TIME,
     );
+    model.effects.pairwise_viscosity = Some(fuller::DAMAGE_VISCOSITY);
     let times: Vec<f64> = (1..)
         .map(|k| k as f64 * SAMPLE_INTERVAL)
         .take_while(|&t| t < END_TIME)

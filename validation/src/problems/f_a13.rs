@@ -92,7 +92,8 @@ pub fn simulate(dx: f64) -> DamageRun {
         },
     ];
     let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).expect("F-A13 parameters are valid");
-    let model = fuller::model(positions, dx, DamageModel::Peerlings(law), loads, END_TIME);
+    let mut model = fuller::model(positions, dx, DamageModel::Peerlings(law), loads, END_TIME);
+    model.effects.pairwise_viscosity = Some(fuller::DAMAGE_VISCOSITY);
     fuller::run(model, SAMPLE_INTERVAL, &[])
 }
 
@@ -246,7 +247,7 @@ pub fn run(tier: Tier) -> ProblemReport {
         },
     ));
     report.notes.push(format!(
-        "F-A13 ({tag}): TL mode (corrected TLSPH, Jaumann rate, no AV/XSPH/artificial stress); κ = max principal Hencky strain (history); {} particles, {} steps, {:.1} s.",
+        "F-A13 ({tag}): TL mode (corrected TLSPH, Jaumann rate, the thesis' artificial viscosity α = 1 (β = 2α, F 2.60); no XSPH or artificial stress); κ = max principal Hencky strain (history); {} particles, {} steps, {:.1} s.",
         cost.particles, cost.steps, cost.wall_s
     ));
     report

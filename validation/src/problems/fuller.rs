@@ -25,6 +25,12 @@ pub const POISSON_RATIO: f64 = 0.3;
 pub const SMOOTHING_FACTOR: f64 = 1.5;
 /// Courant number `[C]` (the thesis does not print one; the suite's usual value).
 pub const CFL: f64 = 0.3;
+/// The damage problems' artificial viscosity (App. A.12, A.13: α = 1 `[T]`) in the form of
+/// F 2.60, whose quadratic term is 2α μ²: (α, β) = (1, 2) of numerics.md §10.1. Failed
+/// particles leave its sums with their bonds. It damps the ringing behind the step waves that
+/// the suddenly pulled edges launch, whose overshoot would otherwise activate damage far
+/// from the crack (F §5.3.2 notes such shock-induced spots).
+pub const DAMAGE_VISCOSITY: (f64, f64) = (1.0, 2.0);
 /// D above which a particle counts as damaged in the area fractions and criteria (problems.md
 /// F-A12/F-A13 "D > 0.5").
 pub const DAMAGED: f64 = 0.5;
