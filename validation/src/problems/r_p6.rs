@@ -108,40 +108,46 @@ normal = [0.0, 1.0]
     )
 }
 
-/// 3D scene: the full cylinder on a wall at z = 0.
-pub fn scene_3d(spacing: f64) -> String {
+/// A 3D rod along z standing on a rigid frictionless anvil at z = 0, moving at −`velocity` ẑ,
+/// with the material table `material` (named "copper").
+fn rod_on_anvil_3d(
+    title: &str,
+    material: &str,
+    spacing: f64,
+    (radius, length): (f64, f64),
+    velocity: f64,
+    end_time: f64,
+) -> String {
     format!(
-        r#"# R-P6 Taylor bar, 3D, rigid frictionless anvil
+        r#"# {title}
 [simulation]
 dimension = 3
 formulation = "total-lagrangian"
 kernel = "cubic-spline"
 smoothing_factor = 1.2
 cfl = 0.3
-end_time = {END_TIME:e}
+end_time = {end_time:e}
 
 {material}
 [[body]]
 name = "rod"
 material = "copper"
 spacing = {spacing:e}
-cylinder = {{ base = [0.0, 0.0, 0.0], axis = "z", radius = {r:e}, length = {LENGTH:e} }}
-velocity = [0.0, 0.0, -{VELOCITY:e}]
+cylinder = {{ base = [0.0, 0.0, 0.0], axis = "z", radius = {radius:e}, length = {length:e} }}
+velocity = [0.0, 0.0, -{velocity:e}]
 
 [[wall]]
 name = "anvil"
 point = [0.0, 0.0, 0.0]
 normal = [0.0, 0.0, 1.0]
-"#,
-        material = material(TANGENT_MODULUS),
-        r = 0.5 * DIAMETER,
+"#
     )
 }
 
-/// 3D quarter model: the quarter cylinder x, y > 0 with symmetry planes x = 0 and y = 0
-/// (ghost particles, numerics.md §13.1) on a wall at z = 0.
-pub fn scene_3d_quarter(spacing: f64) -> String {
-    scene_3d(spacing)
+/// The quarter x, y > 0 of a [`rod_on_anvil_3d`] scene, with symmetry planes x = 0 and y = 0
+/// (ghost particles, numerics.md §13.1).
+fn quarter_model(scene: &str) -> String {
+    scene
         .replace(
             "velocity = [0.0, 0.0, -",
             "clip = { min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }\nvelocity = [0.0, 0.0, -",
@@ -150,6 +156,24 @@ pub fn scene_3d_quarter(spacing: f64) -> String {
             "[[wall]]",
             "[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n\n[[symmetry_plane]]\naxis = \"y\"\nposition = 0.0\n\n[[wall]]",
         )
+}
+
+/// 3D scene: the full cylinder on a wall at z = 0.
+pub fn scene_3d(spacing: f64) -> String {
+    rod_on_anvil_3d(
+        "R-P6 Taylor bar, 3D, rigid frictionless anvil",
+        &material(TANGENT_MODULUS),
+        spacing,
+        (0.5 * DIAMETER, LENGTH),
+        VELOCITY,
+        END_TIME,
+    )
+}
+
+/// 3D quarter model: the quarter cylinder x, y > 0 with symmetry planes x = 0 and y = 0 on a
+/// wall at z = 0.
+pub fn scene_3d_quarter(spacing: f64) -> String {
+    quarter_model(&scene_3d(spacing))
 }
 
 /// The copper Taylor bar that FE codes have long been compared on (Kamoulakos 1990; used by
@@ -173,20 +197,7 @@ pub mod copper_benchmark {
     /// Quarter model (symmetry planes x = 0, y = 0) on an anvil at z = 0, with hourglass
     /// control of coefficient α if given.
     pub fn scene(spacing: f64, hourglass: Option<f64>) -> String {
-        let control = hourglass.map_or(String::new(), |a| {
-            format!("\n[hourglass_control]\ncoefficient = {a}\n")
-        });
-        format!(
-            r#"# Copper Taylor bar benchmark, 3D quarter model
-[simulation]
-dimension = 3
-formulation = "total-lagrangian"
-kernel = "cubic-spline"
-smoothing_factor = 1.2
-cfl = 0.3
-end_time = 80e-6
-
-[[material]]
+        let material = r#"[[material]]
 name = "copper"
 model = "elastic-plastic"
 density = 8930
@@ -194,29 +205,19 @@ youngs_modulus = 117e9
 poisson_ratio = 0.35
 yield_stress = 400e6
 tangent_modulus = 100e6
-
-[[body]]
-name = "rod"
-material = "copper"
-spacing = {spacing:e}
-cylinder = {{ base = [0.0, 0.0, 0.0], axis = "z", radius = {RADIUS:e}, length = {LENGTH:e} }}
-clip = {{ min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }}
-velocity = [0.0, 0.0, -227.0]
-
-[[symmetry_plane]]
-axis = "x"
-position = 0.0
-
-[[symmetry_plane]]
-axis = "y"
-position = 0.0
-
-[[wall]]
-name = "anvil"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-{control}"#
-        )
+"#;
+        let mut scene = super::quarter_model(&super::rod_on_anvil_3d(
+            "Copper Taylor bar benchmark, 3D quarter model",
+            material,
+            spacing,
+            (RADIUS, LENGTH),
+            227.0,
+            80e-6,
+        ));
+        if let Some(alpha) = hourglass {
+            scene.push_str(&format!("\n[hourglass_control]\ncoefficient = {alpha}\n"));
+        }
+        scene
     }
 }
 
