@@ -891,3 +891,54 @@ pub fn run(tier: Tier) -> ProblemReport {
     });
     report
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model_3d(scene: &str) -> tlsph_solver::Model<3> {
+        match parse_scene(scene, "test").expect("scene parses").model {
+            DimensionModel::Three(m) => m,
+            _ => panic!("3D scene"),
+        }
+    }
+
+    #[test]
+    fn quarter_model_keeps_a_quarter_with_two_symmetry_planes() {
+        let dx = 0.74e-3;
+        let full = model_3d(&scene_3d(dx));
+        let quarter = model_3d(&scene_3d_quarter(dx));
+        let count = |m: &tlsph_solver::Model<3>| m.bodies[0].positions.len();
+        // The lattice is symmetric about both planes and has no point on them, so a quarter
+        // is exactly a quarter.
+        assert_eq!(4 * count(&quarter), count(&full));
+        assert!(quarter.bodies[0]
+            .positions
+            .iter()
+            .all(|x| x[0] > 0.0 && x[1] > 0.0));
+        assert_eq!(quarter.effects.symmetry_planes.len(), 2);
+        assert_eq!(full.effects.walls.len(), 1);
+        assert_eq!(quarter.effects.walls.len(), 1);
+    }
+
+    #[test]
+    fn copper_benchmark_scene_is_the_published_set_up() {
+        let m = model_3d(&copper_benchmark::scene(0.8e-3, Some(1.0)));
+        assert_eq!(m.effects.hourglass_control, Some(1.0));
+        assert_eq!(m.effects.symmetry_planes.len(), 2);
+        assert_eq!(m.config.end_time, 80e-6);
+        let body = &m.bodies[0];
+        assert!(body.velocities.iter().all(|v| v[2] == -227.0));
+        let top = body.positions.iter().map(|x| x[2]).fold(0.0, f64::max);
+        let radius = body
+            .positions
+            .iter()
+            .map(|x| x[0].hypot(x[1]))
+            .fold(0.0, f64::max);
+        // Lattice points lie within half a spacing of the surface.
+        assert!(top < copper_benchmark::LENGTH && top > copper_benchmark::LENGTH - 0.8e-3);
+        assert!(radius < copper_benchmark::RADIUS && radius > copper_benchmark::RADIUS - 0.8e-3);
+        assert_eq!(m.materials[0].density, 8930.0);
+        assert!(!copper_benchmark::scene(0.8e-3, None).contains("hourglass"));
+    }
+}
