@@ -387,11 +387,7 @@ pub fn simulate_2d_conventional(spacing: f64, viscosity: Option<(f64, f64)>) -> 
             "\n[artificial_viscosity]\nalpha = {alpha}\nbeta = {beta}\n"
         ));
     }
-    match parse_scene(&scene, "R-P6c 2D scene").map(|s| s.model) {
-        Ok(DimensionModel::Two(m)) => run_model(m, spacing),
-        Ok(_) => unreachable!("2D scene"),
-        Err(e) => panic!("{e}"),
-    }
+    simulate_2d_scene(&scene, spacing)
 }
 
 /// The thesis' OFHC copper Johnson–Cook strength (M-CU9 A, B, n, C, m, T_melt, c_v `[T]`,
@@ -431,11 +427,7 @@ pub fn simulate_2d_material(spacing: f64, material: &str) -> TaylorRun {
         &scene[..start],
         &scene[end..]
     );
-    match parse_scene(&scene, "R-P6 2D scene").map(|s| s.model) {
-        Ok(DimensionModel::Two(m)) => run_model(m, spacing),
-        Ok(_) => unreachable!("2D scene"),
-        Err(e) => panic!("{e}"),
-    }
+    simulate_2d_scene(&scene, spacing)
 }
 
 /// Runs the 2D plane-strain rod, optionally with hourglass control of coefficient α.
@@ -444,7 +436,12 @@ pub fn simulate_2d_with(spacing: f64, tangent_modulus: f64, hourglass: Option<f6
     if let Some(alpha) = hourglass {
         scene.push_str(&format!("\n[hourglass_control]\ncoefficient = {alpha}\n"));
     }
-    match parse_scene(&scene, "R-P6 2D scene").map(|s| s.model) {
+    simulate_2d_scene(&scene, spacing)
+}
+
+/// Runs a 2D Taylor-bar scene text (rod along y, anvil at y = 0) with lattice spacing `spacing`.
+pub fn simulate_2d_scene(scene: &str, spacing: f64) -> TaylorRun {
+    match parse_scene(scene, "R-P6 2D scene").map(|s| s.model) {
         Ok(DimensionModel::Two(m)) => run_model(m, spacing),
         Ok(_) => unreachable!("2D scene"),
         Err(e) => panic!("{e}"),
