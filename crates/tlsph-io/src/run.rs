@@ -131,7 +131,9 @@ pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
         .map(|i| pad((sim.positions0()[i] + sim.displacements()[i]).as_slice()))
         .collect();
     let mut arrays = vec![
-        vector("displacement", &|i| pad(sim.displacements()[i].as_slice())),
+        vector("displacement", &|i| {
+            pad(sim.total_displacement(i).as_slice())
+        }),
         vector("velocity", &|i| pad(sim.velocity(i).as_slice())),
         FrameArray {
             name: "stress".into(),

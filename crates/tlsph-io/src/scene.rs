@@ -691,6 +691,27 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         effects.hourglass_control =
             Some(ctx.positive(&h.coefficient, "hourglass_control.coefficient")?);
     }
+    if let Some(r) = &file.reference_update {
+        let span = r.strain_threshold.span();
+        if updated_lagrangian {
+            return Err(ctx.error(
+                &span,
+                "reference_update",
+                "not available with formulation = \"updated-lagrangian\", which has no reference configuration".into(),
+            ));
+        }
+        if file.xsph.is_some() {
+            return Err(ctx.error(
+                &span,
+                "reference_update",
+                "cannot be combined with [xsph] yet".into(),
+            ));
+        }
+        effects.reference_update = Some(tlsph_solver::ReferenceUpdate {
+            strain_threshold: ctx
+                .positive(&r.strain_threshold, "reference_update.strain_threshold")?,
+        });
+    }
     let output = OutputSpec {
         dir: file
             .output

@@ -25,6 +25,8 @@ pub(crate) struct SceneFile {
     #[serde(default)]
     pub hourglass_control: Option<HourglassTable>,
     #[serde(default)]
+    pub reference_update: Option<ReferenceUpdateTable>,
+    #[serde(default)]
     pub symmetry_plane: Vec<SymmetryPlaneTable>,
     #[serde(default)]
     pub bulk_viscosity: Option<BulkViscosityTable>,
@@ -107,6 +109,14 @@ pub(crate) struct WallTable {
     pub name: Spanned<String>,
     pub point: Spanned<Vec<f64>>,
     pub normal: Spanned<Vec<f64>>,
+}
+
+/// `[reference_update]`: replace the TLSPH reference configuration by the current one when
+/// the strain relative to it exceeds a threshold.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ReferenceUpdateTable {
+    pub strain_threshold: Spanned<f64>,
 }
 
 /// `[hourglass_control]`: Ganzenmüller's penalty.

@@ -11,8 +11,8 @@
 use crate::model::{BulkViscosity, DamageModel, ElasticDamage, MaterialModel};
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, Viscosity,
-    MIN_PARTICLES_PER_TASK,
+    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, ReferenceJacobian,
+    Viscosity, MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{degrade_tensile_part, BENZ_ASPHAUG_CRACK_SPEED_RATIO};
@@ -200,9 +200,9 @@ impl Law for GradyKippBody<'_> {
 
 /// Updates σ, P, J, e and the damage state of one damaged elastic body (numerics.md §9).
 /// `spacing` is the body's Δx (R_s = ½Δx of Grady–Kipp).
-pub(crate) fn update_damaged_elastic<const D: usize>(
+pub(crate) fn update_damaged_elastic<const D: usize, R: ReferenceJacobian + ?Sized>(
     material: &ElasticDamage,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     spacing: f64,
     p: &mut Particles<D>,
@@ -237,10 +237,10 @@ pub(crate) fn update_damaged_elastic<const D: usize>(
 /// law, σ^n = σ_eff − D Σ_{σi > 0} σi nᵢ⊗nᵢ (numerics.md §9.1), e += Δt σ^{n−½}:D/ρ^{n−½}
 /// with the damaged stress (so the energy damage releases stays in e), P = σ cof F. A particle
 /// reaching D = 1 fails: zero stress from now on (numerics.md §9.3).
-fn update<const D: usize, L: Law, V: Viscosity>(
+fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
     elastic: &LinearElastic,
     law: &L,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
     body: &mut DamagedBody,
@@ -286,7 +286,10 @@ fn update<const D: usize, L: Law, V: Viscosity>(
                 } else {
                     degrade_tensile_part(effective, *damage)
                 };
-                let (cofactor, j) = cofactor_and_determinant(&f);
+                // cof F relative to the reference gives P relative to it; J is the total one.
+                let (cofactor, j_ref) = cofactor_and_determinant(&f);
+                let j0 = step.reference_jacobian.at(k);
+                let (j, j_half) = (j_ref * j0, j_half * j0);
                 // Artificial pressure on the force-driving stress only (numerics.md §10.2).
                 let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
                 *energy += dt * j_half / rho0
@@ -295,7 +298,7 @@ fn update<const D: usize, L: Law, V: Viscosity>(
                         .sum();
                 *sigma = sigma_new;
                 *jac = j;
-                *pk1 = if j != 0.0 && j.is_finite() {
+                *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
                     project(&((sigma_new - Tensor3::identity() * q) * cofactor))
                 } else {
                     Tensor::<D>::from_element(f64::NAN)

@@ -98,6 +98,16 @@ pub enum StepError {
         /// det F.
         jacobian: f64,
     },
+    /// The reference configuration could not be rebuilt on the current positions (e.g. a
+    /// particle crossed a symmetry plane).
+    ReferenceUpdate {
+        /// Step number.
+        step: u64,
+        /// Simulated time \[s\].
+        time: f64,
+        /// What went wrong.
+        message: String,
+    },
 }
 
 impl fmt::Display for StepError {
@@ -122,6 +132,14 @@ impl fmt::Display for StepError {
             } => write!(
                 f,
                 "step {step} (t = {time:e}): particle {particle} of body `{body}` is inverted or crushed (det F = {jacobian:e} <= 0)"
+            ),
+            StepError::ReferenceUpdate {
+                step,
+                time,
+                message,
+            } => write!(
+                f,
+                "step {step} (t = {time:e}): the reference configuration could not be updated: {message}"
             ),
         }
     }

@@ -19,6 +19,7 @@ mod fields;
 mod model;
 mod particles;
 mod plasticity;
+mod reference;
 mod simulation;
 pub mod stability;
 mod step;
@@ -32,8 +33,8 @@ pub use fields::ParticleField;
 pub use model::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
     DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
-    MaterialDescription, MaterialModel, Model, PressureModel, SimulationConfig, StrengthModel,
-    StressUpdate, SymmetryPlane, Thermal, WallDescription,
+    MaterialDescription, MaterialModel, Model, PressureModel, ReferenceUpdate, SimulationConfig,
+    StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -336,6 +336,25 @@ pub struct EffectsDescription<const D: usize> {
     pub kernel_groups: Option<Vec<usize>>,
     /// Potential-type particle-to-particle contact between bodies (numerics.md §12.2).
     pub contact: Option<ContactDescription>,
+    /// Reference-configuration update for the total-Lagrangian formulations (numerics.md
+    /// §4 `[C]`): when a particle's strain since the last reference configuration exceeds the
+    /// threshold, the current configuration becomes the new reference.
+    pub reference_update: Option<ReferenceUpdate>,
+}
+
+/// When to replace the reference configuration by the current one (TLSPH at large strain).
+///
+/// TLSPH gradients live on the reference neighbourhood; once the material has flowed far
+/// (strains of order one) that neighbourhood no longer resembles the current one and the
+/// kernel sums degrade until particles invert. Re-referencing rebuilds neighbours and
+/// corrected gradients on the current positions, with volumes V = V0 det F, and carries
+/// det F0 of the old reference in the constitutive update (density, EOS, energy), so the
+/// Jaumann-rate stress, plastic state and energy continue unchanged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceUpdate {
+    /// Update when max over particles of ‖E‖ (Frobenius norm of the Green–Lagrange strain
+    /// ½(FᵀF − I) relative to the current reference) exceeds this value.
+    pub strain_threshold: f64,
 }
 
 /// Vignjevic-type potential contact between particles of different bodies (numerics.md §12.2

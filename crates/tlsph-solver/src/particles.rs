@@ -66,6 +66,22 @@ impl<const D: usize> Particles<D> {
         self.internal_energy.push(0.0);
     }
 
+    /// Drops every particle from index `n` on (the symmetry ghosts, before they are rebuilt).
+    pub fn truncate(&mut self, n: usize) {
+        self.positions0.truncate(n);
+        self.displacements.truncate(n);
+        self.velocities.truncate(n);
+        self.accelerations.truncate(n);
+        self.masses.truncate(n);
+        self.volumes0.truncate(n);
+        self.stress.truncate(n);
+        self.pk1.truncate(n);
+        self.deformation_gradient.truncate(n);
+        self.deformation_rate.truncate(n);
+        self.jacobian.truncate(n);
+        self.internal_energy.truncate(n);
+    }
+
     pub fn len(&self) -> usize {
         self.positions0.len()
     }

@@ -8,8 +8,8 @@ use crate::model::{
 };
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, Viscosity,
-    MIN_PARTICLES_PER_TASK,
+    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, ReferenceJacobian,
+    Viscosity, MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{stress_triaxiality, TRIAXIALITY_STRESS_FLOOR};
@@ -300,9 +300,9 @@ eos_pressure!(PolynomialEos);
 eos_pressure!(MieGruneisen);
 
 /// Updates σ, P, J, e and the plastic state of one body made of `material`.
-pub(crate) fn update_elastic_plastic<const D: usize>(
+pub(crate) fn update_elastic_plastic<const D: usize, R: ReferenceJacobian + ?Sized>(
     material: &ElasticPlastic,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
     state: &mut PlasticState,
@@ -327,10 +327,10 @@ pub(crate) fn update_elastic_plastic<const D: usize>(
     }
 }
 
-fn with_strength<const D: usize, P: Pressure>(
+fn with_strength<const D: usize, P: Pressure, R: ReferenceJacobian + ?Sized>(
     material: &ElasticPlastic,
     pressure: &P,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
     state: &mut PlasticState,
@@ -352,11 +352,11 @@ fn with_strength<const D: usize, P: Pressure>(
 }
 
 #[allow(clippy::too_many_arguments)]
-fn with_viscosity<const D: usize, P: Pressure, S: Strength>(
+fn with_viscosity<const D: usize, P: Pressure, S: Strength, R: ReferenceJacobian + ?Sized>(
     material: &ElasticPlastic,
     pressure: &P,
     strength: &S,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
     state: &mut PlasticState,
@@ -367,27 +367,33 @@ fn with_viscosity<const D: usize, P: Pressure, S: Strength>(
     }
 }
 
-fn with_state<const D: usize, P: Pressure, S: Strength, V: Viscosity>(
+fn with_state<
+    const D: usize,
+    P: Pressure,
+    S: Strength,
+    V: Viscosity,
+    R: ReferenceJacobian + ?Sized,
+>(
     material: &ElasticPlastic,
     pressure: &P,
     strength: &S,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
     state: &mut PlasticState,
 ) {
     match state {
         PlasticState::Strain(v) => {
-            update::<D, P, S, V, [f64; 1]>(material, pressure, strength, step, viscosity, p, v)
+            update::<D, P, S, V, [f64; 1], R>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainTemperature(v) => {
-            update::<D, P, S, V, [f64; 2]>(material, pressure, strength, step, viscosity, p, v)
+            update::<D, P, S, V, [f64; 2], R>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainDamage(v) => {
-            update::<D, P, S, V, [f64; 3]>(material, pressure, strength, step, viscosity, p, v)
+            update::<D, P, S, V, [f64; 3], R>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::StrainTemperatureDamage(v) => {
-            update::<D, P, S, V, [f64; 4]>(material, pressure, strength, step, viscosity, p, v)
+            update::<D, P, S, V, [f64; 4], R>(material, pressure, strength, step, viscosity, p, v)
         }
         PlasticState::None => unreachable!("elastic-plastic bodies always carry a plastic state"),
     }
@@ -396,11 +402,18 @@ fn with_state<const D: usize, P: Pressure, S: Strength, V: Viscosity>(
 /// The per-particle loop (R 5.82–5.86 with a return map):
 /// s* = Q s Qᵀ + 2G Δt D′ (Hughes–Winget Q), p from the pressure law (then the cutoff),
 /// s = return_map(s*), σ = −p I + s, e += Δt σ^{n−½}:D/ρ^{n−½}, ε̄p += Δε̄p, T += σ̄Δε̄p/(ρ c_v).
-fn update<const D: usize, P: Pressure, S: Strength, V: Viscosity, T: PointState>(
+fn update<
+    const D: usize,
+    P: Pressure,
+    S: Strength,
+    V: Viscosity,
+    T: PointState,
+    R: ReferenceJacobian + ?Sized,
+>(
     material: &ElasticPlastic,
     pressure_law: &P,
     strength: &S,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
     points: &mut [T],
@@ -440,7 +453,10 @@ fn update<const D: usize, P: Pressure, S: Strength, V: Viscosity, T: PointState>
             }
             let f_dot = embed_with_zeros(&f_dot_all[k]);
             let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
-            let (cofactor, j) = cofactor_and_determinant(&f);
+            // cof F relative to the reference gives P relative to it; J is the total one.
+            let (cofactor, j_ref) = cofactor_and_determinant(&f);
+            let j0 = step.reference_jacobian.at(k);
+            let (j, j_half) = (j_ref * j0, j_half * j0);
             // Elastic predictor of the deviator with an exactly orthogonal rotation.
             let s_old = deviator(sigma);
             let p_old = -sigma.trace() / 3.0;
@@ -488,7 +504,7 @@ fn update<const D: usize, P: Pressure, S: Strength, V: Viscosity, T: PointState>
             }
             *sigma = sigma_new;
             *jac = j;
-            *pk1 = if j != 0.0 && j.is_finite() {
+            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
                 project(&((sigma_new - Tensor3::identity() * q) * cofactor))
             } else {
                 Tensor::<D>::from_element(f64::NAN)

@@ -13,10 +13,11 @@ use crate::fields::ParticleField;
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
+use crate::reference::ReferenceState;
 use crate::stability::NeighbourDistances;
 use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
-    ConstitutiveStep, NoViscosity,
+    ConstitutiveStep, InitialReference, NoViscosity, ReferenceJacobian,
 };
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
@@ -112,6 +113,8 @@ pub struct Simulation<const D: usize> {
     prescribed: Vec<PrescribedSet<D>>,
     /// Symmetry ghosts (empty without symmetry planes).
     ghosts: Ghosts<D>,
+    /// The declared symmetry planes (to rebuild the ghosts at a reference update).
+    planes: Vec<crate::model::SymmetryPlane>,
     /// Artificial bulk viscosity, if declared.
     viscosity: Option<crate::model::BulkViscosity>,
     /// XSPH transport velocities, if declared (total-Lagrangian variant).
@@ -129,6 +132,8 @@ pub struct Simulation<const D: usize> {
     plastic: Vec<PlasticState>,
     /// Damage state per body (`DamageState::None` unless its material declares damage).
     damage: Vec<DamageState>,
+    /// Reference-configuration update, if declared (TL formulations only).
+    reference: Option<ReferenceState<D>>,
     /// Declared effects with their booked energies (empty when none is declared).
     effects: Vec<BookedEffect<D>>,
     /// Accelerations of one effect (allocated only when effects are declared).
@@ -187,42 +192,24 @@ impl<const D: usize> Simulation<D> {
             });
         }
         let n_real = particles.len();
-        let planes = &model.effects.symmetry_planes;
-        let mut ghosts = Ghosts::default();
-        let mut body_bonds = Vec::with_capacity(bodies.len());
-        let mut kernels = Vec::with_capacity(bodies.len());
-        for info in &bodies {
-            let kernel = config
-                .kernel
-                .build(D, info.smoothing_length)
-                .map_err(|e| SetupError::Kernel(e.to_string()))?;
-            kernels.push(kernel);
-            let mut local = mirror_body(info, &particles, planes, kernel)?;
-            // Append this body's ghosts as particles (never integrated; refreshed each step).
-            for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
-                let global_parent = info.range.start + parent;
-                let signs = local.signs[mask as usize];
-                let position0 = local.positions0[local.n_real + k];
-                let velocity = particles.velocities[global_parent].component_mul(&signs);
-                let volume0 = particles.volumes0[global_parent];
-                particles.push(position0, volume0, info.density0, velocity);
-                local.global.push(particles.len() - 1);
-                ghosts.parent.push(global_parent);
-                ghosts.signs.push(signs);
-                ghosts.mask.push(mask);
-                ghosts.of.insert((global_parent, mask), particles.len() - 1);
-            }
-            local.neighbours = build_neighbour_list(&local.positions0, kernel.support_radius())
-                .map_err(|e| SetupError::Neighbours {
-                    body: info.name.clone(),
-                    message: e.to_string(),
-                })?;
-            body_bonds.push(local);
-        }
-        ghosts.first = n_real;
+        let kernels = bodies
+            .iter()
+            .map(|info| {
+                config
+                    .kernel
+                    .build(D, info.smoothing_length)
+                    .map_err(|e| SetupError::Kernel(e.to_string()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let corrected = config.formulation == Formulation::TotalLagrangianCorrected;
-        let (bonds, correction) = build_bonds(&body_bonds, corrected, particles.len());
-        drop(body_bonds);
+        let (ghosts, bonds, correction) = build_reference(
+            &bodies,
+            &kernels,
+            &mut particles,
+            &model.effects.symmetry_planes,
+            corrected,
+            true,
+        )?;
 
         let prescribed = model
             .boundaries
@@ -370,6 +357,16 @@ impl<const D: usize> Simulation<D> {
         } else {
             Vec::new()
         };
+        let reference = match model.effects.reference_update {
+            None => None,
+            Some(update) => {
+                check_reference_update(&model, update, any_failure)?;
+                Some(ReferenceState::new(
+                    update.strain_threshold,
+                    &particles.positions0[..n_real],
+                ))
+            }
+        };
         let effects = build_effects(&model, &bodies, &kernels, &particles, &bonds, n_real)?;
         let updated = updated_lagrangian.then(|| {
             let body = body_indices(&bodies, n_real);
@@ -390,6 +387,8 @@ impl<const D: usize> Simulation<D> {
             chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
             effects,
             ghosts,
+            planes: model.effects.symmetry_planes.clone(),
+            reference,
             viscosity: model.effects.bulk_viscosity,
             xsph,
             updated,
@@ -461,39 +460,22 @@ impl<const D: usize> Simulation<D> {
             ),
         }
         for (b, info) in self.bodies.iter().enumerate() {
-            let constitutive = ConstitutiveStep {
-                range: info.range.clone(),
-                density0: info.density0,
-                dt,
-                smoothing_length: info.smoothing_length,
-                sound_speed0: info.sound_speed0,
+            let body = BodyUpdate {
+                material: &self.materials[info.material],
+                stress_update: self.config.stress_update,
+                viscosity: self.viscosity,
+                spacing: info.spacing,
+                plastic: &mut self.plastic[b],
+                damage: &mut self.damage[b],
             };
-            let viscosity = self.viscosity;
-            let particles = &mut self.particles;
-            match (&self.materials[info.material], self.config.stress_update) {
-                (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => match viscosity {
-                    None => update_jaumann_rate(m, &constitutive, &NoViscosity, particles),
-                    Some(v) => update_jaumann_rate(m, &constitutive, &v, particles),
-                },
-                (MaterialModel::LinearElastic(m), StressUpdate::GreenLagrange) => {
-                    update_green_lagrange(m, &constitutive, particles)
-                }
-                // Rejected at setup for the Green–Lagrange path.
-                (MaterialModel::ElasticPlastic(m), _) => update_elastic_plastic(
-                    m,
-                    &constitutive,
-                    viscosity,
-                    particles,
-                    &mut self.plastic[b],
+            match &self.reference {
+                None => body.update(
+                    &constitutive_step(info, dt, &InitialReference),
+                    &mut self.particles,
                 ),
-                // Rejected at setup for the Green–Lagrange path.
-                (MaterialModel::ElasticDamage(m), _) => update_damaged_elastic(
-                    m,
-                    &constitutive,
-                    viscosity,
-                    info.spacing,
-                    particles,
-                    &mut self.damage[b],
+                Some(reference) => body.update(
+                    &constitutive_step(info, dt, &reference.jacobian[info.range.clone()]),
+                    &mut self.particles,
                 ),
             }
         }
@@ -567,6 +549,12 @@ impl<const D: usize> Simulation<D> {
         self.next_dt = next_dt;
         self.steps_done += 1;
         self.check_finite(step)?;
+        if let Some(reference) = &self.reference {
+            let n_real = self.n_particles();
+            if reference.due(&self.particles.deformation_gradient[..n_real]) {
+                self.update_reference(step)?;
+            }
+        }
         Ok(StepReport {
             step,
             time: self.time,
@@ -624,6 +612,63 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Takes the particles that failed in this step's constitutive update out of every sum.
+    /// Makes the current configuration the reference (numerics.md §4 `[C]`, `reference.rs`):
+    /// X := x, u := 0, V := m J / ρ0, F := I, J0 := J; ghosts, bonds, corrected gradients and
+    /// the effects' bond data are rebuilt on the new reference. The state at t^n (velocities,
+    /// stresses, plastic state, energies) is untouched.
+    fn update_reference(&mut self, step: u64) -> Result<(), StepError> {
+        let n_real = self.n_particles();
+        let Some(reference) = &mut self.reference else {
+            return Ok(());
+        };
+        let p = &mut self.particles;
+        for info in &self.bodies {
+            let r = info.range.clone();
+            p.positions0[r.clone()]
+                .par_iter_mut()
+                .zip(p.displacements[r.clone()].par_iter_mut())
+                .zip(p.volumes0[r.clone()].par_iter_mut())
+                .zip(p.deformation_gradient[r.clone()].par_iter_mut())
+                .zip(reference.jacobian[r.clone()].par_iter_mut())
+                .zip(p.masses[r.clone()].par_iter().zip(&p.jacobian[r]))
+                .for_each(|(((((x, u), volume), f), j0), (&m, &j))| {
+                    *x += *u;
+                    *u = Vector::zeros();
+                    *volume = m * j / info.density0;
+                    *f = tlsph_math::Tensor::identity();
+                    *j0 = j;
+                });
+        }
+        reference.updates += 1;
+        p.truncate(n_real);
+        let corrected = self.config.formulation == Formulation::TotalLagrangianCorrected;
+        let (ghosts, bonds, correction) = build_reference(
+            &self.bodies,
+            &self.kernels,
+            p,
+            &self.planes,
+            corrected,
+            false,
+        )
+        .map_err(|e| StepError::ReferenceUpdate {
+            step,
+            time: self.time,
+            message: e.to_string(),
+        })?;
+        self.ghosts = ghosts;
+        self.bonds = bonds;
+        self.correction = correction;
+        // Ghost stresses and kinematics follow their (new) parents, as after any step.
+        self.ghosts.refresh_kinematics(&mut self.particles);
+        self.ghosts.refresh_stress(&mut self.particles);
+        for booked in &mut self.effects {
+            booked
+                .effect
+                .reference_changed(&self.particles, &self.bonds, n_real);
+        }
+        Ok(())
+    }
+
     fn remove_newly_failed(&mut self) {
         let mut newly = Vec::new();
         for (b, info) in self.bodies.iter().enumerate() {
@@ -807,6 +852,26 @@ impl<const D: usize> Simulation<D> {
     /// Verlet-list rebuilds so far (updated-Lagrangian formulation only).
     pub fn neighbour_rebuilds(&self) -> Option<u64> {
         self.updated.as_ref().map(|u| u.rebuilds())
+    }
+
+    /// Reference-configuration updates so far (0 unless `[reference_update]` is declared).
+    pub fn reference_updates(&self) -> u64 {
+        self.reference.as_ref().map_or(0, |r| r.updates)
+    }
+
+    /// Initial position of real particle `i` (equal to the reference position unless the
+    /// reference configuration was updated).
+    pub fn initial_position(&self, i: usize) -> Vector<D> {
+        match &self.reference {
+            Some(r) => r.initial_positions[i],
+            None => self.particles.positions0[i],
+        }
+    }
+
+    /// Displacement of real particle `i` from its initial position, x^n − X_initial.
+    pub fn total_displacement(&self, i: usize) -> Vector<D> {
+        let p = &self.particles;
+        p.positions0[i] + p.displacements[i] - self.initial_position(i)
     }
 
     /// Number of particles that have failed so far.
@@ -1032,12 +1097,14 @@ impl<const D: usize> Simulation<D> {
         &self.correction
     }
 
-    /// Reference positions X.
+    /// Reference positions X: the initial positions, or the positions at the last reference
+    /// update (see [`Simulation::initial_position`]). x^n = X + u^n either way.
     pub fn positions0(&self) -> &[Vector<D>] {
         &self.particles.positions0[..self.n_particles()]
     }
 
-    /// Displacements u^n.
+    /// Displacements u^n = x^n − X from the reference positions (from the initial positions
+    /// unless the reference was updated; see [`Simulation::total_displacement`]).
     pub fn displacements(&self) -> &[Vector<D>] {
         &self.particles.displacements[..self.n_particles()]
     }
@@ -1052,7 +1119,8 @@ impl<const D: usize> Simulation<D> {
         &self.particles.stress[..self.n_particles()]
     }
 
-    /// Deformation gradients F^n.
+    /// Deformation gradients F^n relative to the reference configuration (the initial one
+    /// unless the reference was updated).
     pub fn deformation_gradients(&self) -> &[tlsph_math::Tensor<D>] {
         &self.particles.deformation_gradient[..self.n_particles()]
     }
@@ -1078,7 +1146,7 @@ impl<const D: usize> Simulation<D> {
             ParticleField::Pressure => -p.stress[i].trace() / 3.0,
             ParticleField::VonMises => von_mises(&p.stress[i]),
             ParticleField::Velocity(k) => component(self.velocity(i), k),
-            ParticleField::Displacement(k) => component(p.displacements[i], k),
+            ParticleField::Displacement(k) => component(self.total_displacement(i), k),
             ParticleField::Position(k) => component(p.positions0[i] + p.displacements[i], k),
             ParticleField::Density => {
                 let info = &self.bodies[self.body_of(i)];
@@ -1317,18 +1385,131 @@ impl<const D: usize> Xsph<D> {
     }
 }
 
+/// The constitutive inputs of body `info` for a step of `dt`, with the reference's J0.
+fn constitutive_step<'a, R: ReferenceJacobian + ?Sized>(
+    info: &BodyInfo,
+    dt: f64,
+    reference_jacobian: &'a R,
+) -> ConstitutiveStep<'a, R> {
+    ConstitutiveStep {
+        range: info.range.clone(),
+        density0: info.density0,
+        dt,
+        smoothing_length: info.smoothing_length,
+        sound_speed0: info.sound_speed0,
+        reference_jacobian,
+    }
+}
+
+/// One body's constitutive update: the material `match` happens here, once per body and
+/// step, outside the particle loops.
+struct BodyUpdate<'a> {
+    material: &'a MaterialModel,
+    stress_update: StressUpdate,
+    viscosity: Option<crate::model::BulkViscosity>,
+    spacing: f64,
+    plastic: &'a mut PlasticState,
+    damage: &'a mut DamageState,
+}
+
+impl BodyUpdate<'_> {
+    fn update<const D: usize, R: ReferenceJacobian + ?Sized>(
+        self,
+        step: &ConstitutiveStep<R>,
+        particles: &mut Particles<D>,
+    ) {
+        match (self.material, self.stress_update) {
+            (MaterialModel::LinearElastic(m), StressUpdate::JaumannRate) => match self.viscosity {
+                None => update_jaumann_rate(m, step, &NoViscosity, particles),
+                Some(v) => update_jaumann_rate(m, step, &v, particles),
+            },
+            // The reference update is rejected at setup for the Green–Lagrange path, which
+            // needs F relative to the initial configuration.
+            (MaterialModel::LinearElastic(m), StressUpdate::GreenLagrange) => {
+                update_green_lagrange(m, step, particles)
+            }
+            // Rejected at setup for the Green–Lagrange path.
+            (MaterialModel::ElasticPlastic(m), _) => {
+                update_elastic_plastic(m, step, self.viscosity, particles, self.plastic)
+            }
+            // Rejected at setup for the Green–Lagrange path.
+            (MaterialModel::ElasticDamage(m), _) => update_damaged_elastic(
+                m,
+                step,
+                self.viscosity,
+                self.spacing,
+                particles,
+                self.damage,
+            ),
+        }
+    }
+}
+
+/// Symmetry ghosts (appended to `particles` after the reals, which are all it may hold) and
+/// reference bonds with their gradients, built on the reference positions `positions0`
+/// (numerics.md §4.2, §6, §13.1): at setup, and again at every reference update.
+///
+/// At `setup` every body must lie strictly on one side of each plane (an input check). At a
+/// reference update a particle that has drifted across a plane (a discretisation artefact
+/// next to the plane, which the full model shows as two mirror particles passing each other)
+/// is mirrored like any other: the plane is a symmetry of the solution, not a wall.
+fn build_reference<const D: usize>(
+    bodies: &[BodyInfo],
+    kernels: &[tlsph_kernels::AnyKernel],
+    particles: &mut Particles<D>,
+    planes: &[crate::model::SymmetryPlane],
+    corrected: bool,
+    setup: bool,
+) -> Result<(Ghosts<D>, Bonds<D>, CorrectionReport), SetupError> {
+    let n_real = particles.len();
+    let mut ghosts = Ghosts::default();
+    let mut body_bonds = Vec::with_capacity(bodies.len());
+    for (info, &kernel) in bodies.iter().zip(kernels) {
+        let mut local = mirror_body(info, particles, planes, kernel, setup)?;
+        // Append this body's ghosts as particles (never integrated; refreshed each step).
+        for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
+            let global_parent = info.range.start + parent;
+            let signs = local.signs[mask as usize];
+            let position0 = local.positions0[local.n_real + k];
+            let velocity = particles.velocities[global_parent].component_mul(&signs);
+            let volume0 = particles.volumes0[global_parent];
+            particles.push(position0, volume0, info.density0, velocity);
+            // The parent's mass (ρ0 V0 at setup; the reference volume is V0 J0 after an update).
+            let ghost = particles.len() - 1;
+            particles.masses[ghost] = particles.masses[global_parent];
+            local.global.push(ghost);
+            ghosts.parent.push(global_parent);
+            ghosts.signs.push(signs);
+            ghosts.mask.push(mask);
+            ghosts.of.insert((global_parent, mask), ghost);
+        }
+        local.neighbours = build_neighbour_list(&local.positions0, kernel.support_radius())
+            .map_err(|e| SetupError::Neighbours {
+                body: info.name.clone(),
+                message: e.to_string(),
+            })?;
+        body_bonds.push(local);
+    }
+    ghosts.first = n_real;
+    let (bonds, correction) = build_bonds(&body_bonds, corrected, particles.len());
+    Ok((ghosts, bonds, correction))
+}
+
 /// The body's reals and their mirror images across every non-empty combination of symmetry
-/// planes within the kernel support (corner ghosts when several planes meet).
+/// planes within the kernel support (corner ghosts when several planes meet). With
+/// `check_sides`, the planes must exist in `D` dimensions and every real must lie strictly on
+/// one side of each.
 fn mirror_body<const D: usize>(
     info: &BodyInfo,
     particles: &Particles<D>,
     planes: &[crate::model::SymmetryPlane],
     kernel: tlsph_kernels::AnyKernel,
+    check_sides: bool,
 ) -> Result<BodyBonds<D>, SetupError> {
     let support = kernel.support_radius();
     let reals = &particles.positions0[info.range.clone()];
     let n_real = reals.len();
-    for plane in planes {
+    for plane in planes.iter().filter(|_| check_sides) {
         if plane.axis >= D || !plane.position.is_finite() {
             return Err(SetupError::InvalidConfig {
                 field: "symmetry_plane",
@@ -1338,18 +1519,38 @@ fn mirror_body<const D: usize>(
                 ),
             });
         }
-        let above = reals.iter().all(|x| x[plane.axis] > plane.position);
-        let below = reals.iter().all(|x| x[plane.axis] < plane.position);
-        if !(above || below) {
+        // The side of the first particle is the body's side; name the first one off it.
+        let side = |x: &Vector<D>| (x[plane.axis] - plane.position).signum();
+        let body_side = reals.first().map_or(1.0, side);
+        let off_side = reals
+            .iter()
+            .position(|x| x[plane.axis] == plane.position || side(x) != body_side);
+        if let Some(k) = off_side {
             return Err(SetupError::InvalidBody {
                 body: info.name.clone(),
                 message: format!(
-                    "has particles on both sides of, or on, the symmetry plane x[{}] = {}",
-                    plane.axis, plane.position
+                    "has particles on both sides of, or on, the symmetry plane x[{}] = {} (particle {k} at {:?})",
+                    plane.axis,
+                    plane.position,
+                    reals[k].as_slice()
                 ),
             });
         }
     }
+    // How far particles have drifted across each plane (0 at setup): a particle within
+    // support of the ghost of a drifted particle needs a ghost of its own, so the band of
+    // mirrored particles widens by that depth.
+    let depth: Vec<f64> = planes
+        .iter()
+        .map(|plane| {
+            let offset = |x: &Vector<D>| x[plane.axis] - plane.position;
+            let side = reals.iter().map(offset).sum::<f64>().signum();
+            reals
+                .iter()
+                .map(|x| (-side * offset(x)).max(0.0))
+                .fold(0.0, f64::max)
+        })
+        .collect();
     let n_masks = 1usize << planes.len();
     let signs: Vec<Vector<D>> = (0..n_masks)
         .map(|mask| {
@@ -1369,7 +1570,7 @@ fn mirror_body<const D: usize>(
     for mask in 1..n_masks {
         for (i, x) in reals.iter().enumerate() {
             let near = planes.iter().enumerate().all(|(k, plane)| {
-                mask & (1 << k) == 0 || (x[plane.axis] - plane.position).abs() < support
+                mask & (1 << k) == 0 || (x[plane.axis] - plane.position).abs() < support + depth[k]
             });
             if !near {
                 continue;
@@ -1577,13 +1778,11 @@ fn build_effects<const D: usize>(
             .collect();
         let hourglass = HourglassControl::new(
             alpha,
-            &particles.positions0,
-            &particles.volumes0,
-            &particles.masses,
-            &bonds.offsets[..=n],
-            &bonds.neighbours,
-            |i| kernels[body_of(i)],
-            |i| youngs[body_of(i)],
+            kernels.to_vec(),
+            youngs,
+            body_indices(bodies, n),
+            particles,
+            bonds,
         );
         effects.push(BookedEffect {
             effect: Box::new(hourglass),
@@ -1690,6 +1889,40 @@ fn build_contact<const D: usize>(
 
 /// Effects that need the reference bonds or mirror particles, refused for the
 /// updated-Lagrangian formulation with a message saying why.
+/// A reference update needs a total-Lagrangian formulation, the Jaumann-rate stress update
+/// (the Green–Lagrange path needs F relative to the initial configuration) and no damage or
+/// failure model and no XSPH (their state is tied to the initial bonds); the threshold must be
+/// a positive strain.
+fn check_reference_update<const D: usize>(
+    model: &Model<D>,
+    update: crate::model::ReferenceUpdate,
+    any_failure: bool,
+) -> Result<(), SetupError> {
+    let problem = if !(update.strain_threshold.is_finite() && update.strain_threshold > 0.0) {
+        Some(format!(
+            "strain_threshold must be finite and > 0, got {}",
+            update.strain_threshold
+        ))
+    } else if model.config.formulation == Formulation::UpdatedLagrangian {
+        Some("formulation = \"updated-lagrangian\" has no reference configuration to update".into())
+    } else if model.config.stress_update == StressUpdate::GreenLagrange {
+        Some("it needs stress_update = \"jaumann-rate\" (the Green-Lagrange path needs F relative to the initial configuration)".into())
+    } else if any_failure {
+        Some("it cannot be combined with a damage or failure model yet (failed particles are removed from the initial bonds)".into())
+    } else if model.effects.xsph.is_some() {
+        Some("it cannot be combined with XSPH yet".into())
+    } else {
+        None
+    };
+    match problem {
+        Some(message) => Err(SetupError::InvalidConfig {
+            field: "reference_update",
+            message,
+        }),
+        None => Ok(()),
+    }
+}
+
 fn check_updated_lagrangian_effects<const D: usize>(model: &Model<D>) -> Result<(), SetupError> {
     let refuse = |field: &'static str, why: &str| {
         Err(SetupError::InvalidConfig {

@@ -132,8 +132,34 @@ pub(crate) fn midpoint_rates(f: &Tensor3, f_dot: &Tensor3, dt: f64) -> (Tensor3,
     (sym(&l), (l - l.transpose()) * 0.5, j_half)
 }
 
+/// det F0 of the reference configuration relative to the initial one, per body-local
+/// particle: the constitutive update multiplies its det F (taken relative to the reference)
+/// by it wherever the density enters (ρ = ρ0 / (J0 J), EOS, energy, bulk viscosity).
+pub(crate) trait ReferenceJacobian: Sync {
+    /// J0 of body-local particle `k`.
+    fn at(&self, k: usize) -> f64;
+}
+
+/// The reference is the initial configuration (no `[reference_update]`): J0 = 1, compiled away.
+pub(crate) struct InitialReference;
+
+impl ReferenceJacobian for InitialReference {
+    #[inline(always)]
+    fn at(&self, _: usize) -> f64 {
+        1.0
+    }
+}
+
+/// An updated reference configuration: J0 per body-local particle.
+impl ReferenceJacobian for [f64] {
+    #[inline(always)]
+    fn at(&self, k: usize) -> f64 {
+        self[k]
+    }
+}
+
 /// Inputs of one constitutive update over a body's particle range.
-pub(crate) struct ConstitutiveStep {
+pub(crate) struct ConstitutiveStep<'a, R: ReferenceJacobian + ?Sized = InitialReference> {
     /// Particle range of the body.
     pub range: Range<usize>,
     /// Reference density ρ0 of the body's material.
@@ -144,6 +170,8 @@ pub(crate) struct ConstitutiveStep {
     pub smoothing_length: f64,
     /// Sound speed at the reference density \[m/s\].
     pub sound_speed0: f64,
+    /// det F0 of the current reference configuration (numerics.md §4 `[C]` reference update).
+    pub reference_jacobian: &'a R,
 }
 
 /// Artificial pressure added to the force-driving stress (numerics.md §10.2).
@@ -181,9 +209,9 @@ impl Viscosity for crate::model::BulkViscosity {
 /// Rates are evaluated at n−½ with F^{n−½} = F^n − ½Δt Ḟ (exact because F is linear in u and
 /// u^{n−½} = u^n − ½Δt v^{n−½}, R 5.2): L = Ḟ F^{−1}, D = sym L, W = skew L. Internal energy:
 /// Δe = Δt σ^{n−½}:D / ρ^{n−½} with σ^{n−½} = ½(σ^{n−1} + σ^n) (R 4.12, 4.28).
-pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity>(
+pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity, R: ReferenceJacobian + ?Sized>(
     material: &LinearElastic,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
 ) {
@@ -206,7 +234,10 @@ pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity>(
             let f_dot = embed_with_zeros(&f_dot_all[k]);
             let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
             let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
-            let (cofactor, j) = cofactor_and_determinant(&f);
+            // cof F relative to the reference gives P relative to it; J is the total one.
+            let (cofactor, j_ref) = cofactor_and_determinant(&f);
+            let j0 = step.reference_jacobian.at(k);
+            let (j, j_half) = (j_ref * j0, j_half * j0);
             // Artificial pressure on the force-driving stress only (numerics.md §10.2).
             let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
             let driving = sigma_new - Tensor3::identity() * q;
@@ -218,7 +249,7 @@ pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity>(
             *jac = j;
             // P = J σ F⁻ᵀ = σ cof F (R 5.32, numerics.md §4.4); a singular or non-finite F
             // leaves NaN for the check.
-            *pk1 = if j != 0.0 && j.is_finite() {
+            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
                 project(&(driving * cofactor))
             } else {
                 Tensor::<D>::from_element(f64::NAN)
@@ -230,9 +261,12 @@ pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity>(
 /// one body. S^n = C:E^n with E = ½(FᵀF − I); P = F S; σ = J⁻¹ F S Fᵀ.
 /// Internal energy increment ½(S^{n−1} + S^n):(E^n − E^{n−1}) / ρ0 with F^{n−1} = F^n − Δt Ḟ,
 /// which for this quadratic energy equals the exact change of strain energy.
-pub(crate) fn update_green_lagrange<const D: usize>(
+///
+/// Needs F relative to the initial configuration, so a reference update is rejected at setup
+/// for this path (`step.reference_jacobian` is always the initial reference here).
+pub(crate) fn update_green_lagrange<const D: usize, R: ReferenceJacobian + ?Sized>(
     material: &LinearElastic,
-    step: &ConstitutiveStep,
+    step: &ConstitutiveStep<R>,
     p: &mut Particles<D>,
 ) {
     let dt = step.dt;

@@ -401,3 +401,32 @@ fn initial_stress_errors_name_the_field_and_line() {
     let e = error_of(&gl);
     assert_eq!(e.field, "body[target].initial_stress", "{e}");
 }
+
+#[test]
+fn reference_update_is_read_and_checked_with_field_and_line() {
+    let ok = format!("{PLATE_IMPACT}\n[reference_update]\nstrain_threshold = 0.1\n");
+    match parse_scene(&ok, "scene.toml").unwrap().model {
+        DimensionModel::One(m) => assert_eq!(
+            m.effects.reference_update.map(|r| r.strain_threshold),
+            Some(0.1)
+        ),
+        _ => unreachable!(),
+    }
+    for (base, bad, field) in [
+        (
+            PLATE_IMPACT.to_string(),
+            "strain_threshold = -0.1",
+            "reference_update.strain_threshold",
+        ),
+        (
+            rod_impact("updated-lagrangian"),
+            "strain_threshold = 0.1",
+            "reference_update",
+        ),
+    ] {
+        let text = format!("{base}\n[reference_update]\n{bad}\n");
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert_eq!(e.line, Some(line_of(&text, bad)), "{e}");
+    }
+}

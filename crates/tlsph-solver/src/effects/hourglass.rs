@@ -4,8 +4,10 @@
 //! is booked separately in the energy balance.
 
 use super::{Effect, EffectContext};
+use crate::bonds::Bonds;
+use crate::particles::Particles;
 use rayon::prelude::*;
-use tlsph_kernels::Kernel;
+use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
 
 /// Ganzenmüller's hourglass penalty with dimensionless coefficient α.
@@ -14,6 +16,13 @@ use tlsph_math::Vector;
 /// with X_IJ = X_I − X_J, x_IJ = x_I − x_J, r = |x_IJ|, E the body's Young's modulus.
 #[derive(Debug, Clone)]
 pub struct HourglassControl {
+    coefficient: f64,
+    /// Kernel of each body.
+    kernels: Vec<AnyKernel>,
+    /// Young's modulus of each body \[Pa\].
+    youngs: Vec<f64>,
+    /// Body index of each real particle.
+    body: Vec<u32>,
     /// Per bond: V0_J W0_IJ / |X_IJ|².
     bond_weight: Vec<f64>,
     /// Per particle: ½ α E V0_I / m_I = ½ α E / ρ0 \[m²/s²\].
@@ -21,36 +30,51 @@ pub struct HourglassControl {
 }
 
 impl HourglassControl {
-    /// Precomputes the bond weights from the reference configuration.
-    /// `modulus_of(i)` is E of particle i's material \[Pa\], `kernel_of(i)` its body's kernel.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new<const D: usize, K: Kernel>(
+    /// Precomputes the bond weights from the reference configuration. `kernels` and `youngs`
+    /// (E \[Pa\]) are per body, `body` per real particle.
+    pub(crate) fn new<const D: usize>(
         coefficient: f64,
-        positions0: &[Vector<D>],
-        volumes0: &[f64],
-        masses: &[f64],
-        offsets: &[usize],
-        neighbours: &[u32],
-        kernel_of: impl Fn(usize) -> K,
-        modulus_of: impl Fn(usize) -> f64,
+        kernels: Vec<AnyKernel>,
+        youngs: Vec<f64>,
+        body: Vec<u32>,
+        particles: &Particles<D>,
+        bonds: &Bonds<D>,
     ) -> Self {
-        let n = offsets.len() - 1;
-        let mut bond_weight = Vec::with_capacity(neighbours.len());
+        let mut hourglass = Self {
+            coefficient,
+            kernels,
+            youngs,
+            body,
+            bond_weight: Vec::new(),
+            particle_factor: Vec::new(),
+        };
+        hourglass.weigh(particles, bonds);
+        hourglass
+    }
+
+    /// Bond weights and particle factors on the current reference positions and volumes.
+    fn weigh<const D: usize>(&mut self, particles: &Particles<D>, bonds: &Bonds<D>) {
+        let (x0, v0) = (&particles.positions0, &particles.volumes0);
+        let n = self.body.len();
+        self.bond_weight.clear();
         for i in 0..n {
-            let kernel = kernel_of(i);
-            for &j in &neighbours[offsets[i]..offsets[i + 1]] {
+            let kernel = self.kernels[self.body[i] as usize];
+            for &j in bonds.neighbours_of(i) {
                 let j = j as usize;
-                let r0 = (positions0[i] - positions0[j]).norm();
-                bond_weight.push(volumes0[j] * kernel.value(r0) / (r0 * r0));
+                let r0 = (x0[i] - x0[j]).norm();
+                // |X_IJ| ≥ ½h: never binding on a lattice (spacing ≥ h/2), but a reference
+                // update can bring two particles closer, where 1/|X_IJ|² would blow up.
+                let r_floor = r0.max(0.5 * kernel.smoothing_length());
+                self.bond_weight
+                    .push(v0[j] * kernel.value(r0) / (r_floor * r_floor));
             }
         }
-        let particle_factor = (0..n)
-            .map(|i| 0.5 * coefficient * modulus_of(i) * volumes0[i] / masses[i])
+        self.particle_factor = (0..n)
+            .map(|i| {
+                0.5 * self.coefficient * self.youngs[self.body[i] as usize] * v0[i]
+                    / particles.masses[i]
+            })
             .collect();
-        Self {
-            bond_weight,
-            particle_factor,
-        }
     }
 }
 
@@ -61,6 +85,10 @@ impl<const D: usize> Effect<D> for HourglassControl {
 
     fn name(&self) -> &str {
         "hourglass"
+    }
+
+    fn reference_changed(&mut self, particles: &Particles<D>, bonds: &Bonds<D>, _n_real: usize) {
+        self.weigh(particles, bonds);
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {

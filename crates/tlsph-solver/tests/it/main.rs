@@ -7,6 +7,7 @@ mod damage;
 mod effects;
 mod long_runs;
 mod plasticity;
+mod reference_update;
 mod symmetry;
 mod updated_lagrangian;
 
