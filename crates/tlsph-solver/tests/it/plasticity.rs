@@ -9,7 +9,8 @@ use tlsph_solver::{
     StrengthModel, StressUpdate,
 };
 
-fn copper() -> ElasticPlastic {
+/// The M-CU6 copper of R-P6 (numerics.md §8.2 linear hardening, E_t = 1.1 GPa).
+pub(super) fn copper() -> ElasticPlastic {
     let elastic = LinearElastic::new(110e9, 0.343).unwrap();
     ElasticPlastic {
         elastic,

@@ -1,12 +1,13 @@
 //! Reference-configuration update (numerics.md §4 `[C]`): re-referencing preserves the state
 //! it inherits, stays deterministic, and is rejected where it cannot be right.
 
+use super::plasticity::copper;
 use super::{lattice, model, Setup};
-use tlsph_materials::{LinearElastic, VonMisesPlasticity};
+use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BoundaryDescription, ElasticPlastic, Formulation, MaterialModel, Model, ParticleField,
-    PressureModel, ReferenceUpdate, SetupError, Simulation, StrengthModel, StressUpdate,
+    BoundaryDescription, Formulation, MaterialModel, Model, ParticleField, ReferenceUpdate,
+    SetupError, Simulation, StressUpdate,
 };
 
 /// A plastic plane-strain block of 10 × 8 particles whose every particle is driven with
@@ -27,16 +28,7 @@ fn driven_block(reference_update: Option<f64>) -> Model<2> {
         },
     );
     m.materials[0].density = 8990.0;
-    m.materials[0].model = MaterialModel::ElasticPlastic(ElasticPlastic {
-        elastic: LinearElastic::new(110e9, 0.343).unwrap(),
-        strength: StrengthModel::VonMises(
-            VonMisesPlasticity::from_tangent_modulus(90e6, 110e9, 1.1e9).unwrap(),
-        ),
-        pressure: PressureModel::Hypoelastic,
-        min_pressure: None,
-        thermal: None,
-        failure: None,
-    });
+    m.materials[0].model = MaterialModel::ElasticPlastic(copper());
     m.boundaries = positions
         .iter()
         .enumerate()
