@@ -664,7 +664,7 @@ impl<const D: usize> Simulation<D> {
         for booked in &mut self.effects {
             booked
                 .effect
-                .reference_changed(&self.particles, &self.bonds, n_real);
+                .reference_changed(&self.particles, &self.bonds);
         }
         Ok(())
     }

@@ -87,7 +87,7 @@ impl<const D: usize> Effect<D> for HourglassControl {
         "hourglass"
     }
 
-    fn reference_changed(&mut self, particles: &Particles<D>, bonds: &Bonds<D>, _n_real: usize) {
+    fn reference_changed(&mut self, particles: &Particles<D>, bonds: &Bonds<D>) {
         self.weigh(particles, bonds);
     }
 

@@ -69,8 +69,8 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
 
     /// The reference configuration was replaced by the current one (numerics.md §4 `[C]`):
     /// an effect that keeps per-bond reference data rebuilds it from the new `bonds` and the
-    /// reference positions and volumes in `particles` (`n_real` real particles).
-    fn reference_changed(&mut self, _particles: &Particles<D>, _bonds: &Bonds<D>, _n_real: usize) {}
+    /// reference positions and volumes in `particles`.
+    fn reference_changed(&mut self, _particles: &Particles<D>, _bonds: &Bonds<D>) {}
 
     /// A boxed copy (simulations are `Clone`).
     fn clone_box(&self) -> Box<dyn Effect<D>>;
