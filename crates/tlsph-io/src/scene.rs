@@ -14,7 +14,8 @@ use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
     EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model, ParticleField,
-    PressureModel, SimulationConfig, StressUpdate, SymmetryPlane, WallDescription,
+    PressureModel, RampShape, SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp,
+    WallDescription,
 };
 use toml::Spanned;
 
@@ -1290,12 +1291,49 @@ fn build_boundary<const D: usize>(
             components[k] = true;
         }
     }
+    let ramp = match (&t.ramp_time, &t.ramp_shape) {
+        (None, None) => None,
+        (None, Some(shape)) => {
+            return Err(ctx.error(
+                &shape.span(),
+                &field("ramp_shape"),
+                "needs `ramp_time` (the duration of the ramp)".into(),
+            ))
+        }
+        (Some(time), _) if fixed => {
+            return Err(ctx.error(
+                &time.span(),
+                &field("ramp_time"),
+                "a fixed boundary has nothing to ramp; give a `velocity` or drop the key".into(),
+            ))
+        }
+        (Some(time), shape) => {
+            let duration = ctx.positive(time, &field("ramp_time"))?;
+            let shape =
+                match shape {
+                    None => RampShape::Smooth,
+                    Some(s) => match s.get_ref().as_str() {
+                        "smooth" => RampShape::Smooth,
+                        "linear" => RampShape::Linear,
+                        other => return Err(ctx.error(
+                            &s.span(),
+                            &field("ramp_shape"),
+                            format!(
+                                "unknown ramp shape `{other}` (expected \"smooth\" or \"linear\")"
+                            ),
+                        )),
+                    },
+                };
+            Some(VelocityRamp { duration, shape })
+        }
+    };
     Ok(BoundaryDescription {
         name,
         body: body_index,
         particles,
         velocity,
         components,
+        ramp,
     })
 }
 

@@ -314,6 +314,8 @@ pub(crate) struct BoundaryTable {
     pub fixed: Option<Spanned<bool>>,
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub components: Option<Spanned<Vec<String>>>,
+    pub ramp_time: Option<Spanned<f64>>,
+    pub ramp_shape: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -33,8 +33,9 @@ pub use fields::ParticleField;
 pub use model::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
     DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
-    MaterialDescription, MaterialModel, Model, PressureModel, ReferenceUpdate, SimulationConfig,
-    StrengthModel, StressUpdate, SymmetryPlane, Thermal, WallDescription,
+    MaterialDescription, MaterialModel, Model, PressureModel, RampShape, ReferenceUpdate,
+    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
+    WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -276,6 +276,41 @@ pub struct BoundaryDescription<const D: usize> {
     pub velocity: Vector<D>,
     /// Which velocity components are imposed.
     pub components: [bool; D],
+    /// Start-up of the prescribed velocity; `None`: the full velocity from t = 0.
+    pub ramp: Option<VelocityRamp>,
+}
+
+/// Start-up of a prescribed velocity: v(t) = r(t/T) v with r rising from 0 at t = 0 to 1 at
+/// t = T and staying 1 afterwards (ours, not in the theses; for quasi-static loading in a
+/// dynamic code, numerics.md §17 pitfall 12). Both shapes displace the set by v (t − T/2) once
+/// t ≥ T.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityRamp {
+    /// Ramp duration T \[s\] (> 0).
+    pub duration: f64,
+    /// How the velocity rises.
+    pub shape: RampShape,
+}
+
+/// Shape r(s), 0 ≤ s ≤ 1, of a [`VelocityRamp`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RampShape {
+    /// r(s) = s: constant acceleration, with a jump in acceleration at both ends.
+    Linear,
+    /// r(s) = ½(1 − cos πs): the acceleration rises from and returns to zero, so the ramp
+    /// launches no acceleration step (the quieter start).
+    Smooth,
+}
+
+impl VelocityRamp {
+    /// Factor r(t/T) ∈ [0, 1] of the prescribed velocity at time `t`.
+    pub fn factor(&self, t: f64) -> f64 {
+        let s = (t / self.duration).clamp(0.0, 1.0);
+        match self.shape {
+            RampShape::Linear => s,
+            RampShape::Smooth => 0.5 * (1.0 - (std::f64::consts::PI * s).cos()),
+        }
+    }
 }
 
 /// A rigid frictionless plane (numerics.md §13; an anvil).

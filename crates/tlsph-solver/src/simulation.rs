@@ -10,7 +10,9 @@ use crate::effects::{
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
-use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
+use crate::model::{
+    Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, VelocityRamp,
+};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
 use crate::reference::ReferenceState;
@@ -96,6 +98,7 @@ struct PrescribedSet<const D: usize> {
     particles: Vec<usize>,
     velocity: Vector<D>,
     components: [bool; D],
+    ramp: Option<VelocityRamp>,
 }
 
 /// A running TLSPH simulation in `D` dimensions.
@@ -237,10 +240,22 @@ impl<const D: usize> Simulation<D> {
                         message: "velocity is not finite".into(),
                     });
                 }
+                if let Some(ramp) = b.ramp {
+                    if !(ramp.duration.is_finite() && ramp.duration > 0.0) {
+                        return Err(SetupError::InvalidBoundary {
+                            boundary: b.name.clone(),
+                            message: format!(
+                                "ramp duration must be finite and > 0 (got {})",
+                                ramp.duration
+                            ),
+                        });
+                    }
+                }
                 Ok(PrescribedSet {
                     particles: b.particles.iter().map(|i| info.range.start + i).collect(),
                     velocity: b.velocity,
                     components: b.components,
+                    ramp: b.ramp,
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -414,7 +429,7 @@ impl<const D: usize> Simulation<D> {
             }
         }
         // Prescribed velocities hold from t = 0.
-        sim.impose_velocities();
+        sim.impose_velocities(0.0);
         Ok(sim)
     }
 
@@ -530,20 +545,22 @@ impl<const D: usize> Simulation<D> {
                 }
             }
         }
-        self.impose_velocities();
+        // The kicked velocity is v^{n+½} of the coming drift, centred at t^n + ½Δt^{n+1}.
+        let velocity_time = self.time + 0.5 * next_dt;
+        self.impose_velocities(velocity_time);
         if let Some(xsph) = &mut self.xsph {
             xsph.update(
                 &self.bonds,
                 &self.particles.velocities,
                 self.ghosts.first_or(self.particles.len()),
             );
-            impose_on(&self.prescribed, &mut xsph.velocity);
+            impose_on(&self.prescribed, &mut xsph.velocity, velocity_time);
             self.ghosts.mirror(&mut xsph.velocity);
         }
         if let Some(updated) = &mut self.updated {
             updated.update_xsph(&self.particles);
             if let Some((_, transport)) = &mut updated.xsph {
-                impose_on(&self.prescribed, transport);
+                impose_on(&self.prescribed, transport, velocity_time);
             }
         }
         self.next_dt = next_dt;
@@ -932,8 +949,9 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    fn impose_velocities(&mut self) {
-        impose_on(&self.prescribed, &mut self.particles.velocities);
+    /// Imposes the prescribed velocities as they are at time `at`.
+    fn impose_velocities(&mut self, at: f64) {
+        impose_on(&self.prescribed, &mut self.particles.velocities, at);
     }
 
     fn check_finite(&self, step: u64) -> Result<(), StepError> {
@@ -1049,7 +1067,7 @@ impl<const D: usize> Simulation<D> {
         );
         self.particles.velocities.copy_from_slice(velocities);
         self.particles.accelerations.fill(Vector::zeros());
-        self.impose_velocities();
+        self.impose_velocities(self.time + 0.5 * self.next_dt);
     }
 
     /// Step size the next call to [`Simulation::step`] will take (0 before the first step).
@@ -1600,15 +1618,24 @@ fn mirror_body<const D: usize>(
     })
 }
 
-/// Sets the prescribed components of `velocities` (numerics.md §13.2). Applied to the particle
+/// Sets the prescribed components of `velocities` to their values at time `at` (numerics.md
+/// §13.2, scaled by the set's [`VelocityRamp`] if it has one). Applied to the particle
 /// velocities and to the XSPH transport velocities, so a fixed particle never drifts with the
 /// average of its moving neighbours.
-fn impose_on<const D: usize>(prescribed: &[PrescribedSet<D>], velocities: &mut [Vector<D>]) {
+fn impose_on<const D: usize>(
+    prescribed: &[PrescribedSet<D>],
+    velocities: &mut [Vector<D>],
+    at: f64,
+) {
     for set in prescribed {
+        let velocity = match set.ramp {
+            None => set.velocity,
+            Some(ramp) => set.velocity * ramp.factor(at),
+        };
         for &i in &set.particles {
             for (c, imposed) in set.components.iter().enumerate() {
                 if *imposed {
-                    velocities[i][c] = set.velocity[c];
+                    velocities[i][c] = velocity[c];
                 }
             }
         }

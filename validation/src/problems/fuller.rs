@@ -90,6 +90,7 @@ pub fn model(
                     particles: l.particles,
                     velocity,
                     components,
+                    ramp: None,
                 }
             })
             .collect(),

@@ -210,3 +210,54 @@ fn the_documented_plate_with_a_hole_and_a_notch_parses_as_stated() {
     assert_eq!(model.boundaries[0].particles.len(), 80);
     assert_eq!(model.boundaries[1].particles.len(), 80);
 }
+
+#[test]
+fn a_boundary_ramp_is_read_with_its_shape_and_checked_with_field_and_line() {
+    use tlsph_solver::{RampShape, VelocityRamp};
+    let with = |keys: &str| {
+        PLATE_WITH_HOLE.replace(
+            "velocity = [0.0, 0.001]\ncomponents = [\"y\"]",
+            &format!("velocity = [0.0, 0.001]\ncomponents = [\"y\"]\n{keys}"),
+        )
+    };
+    assert_eq!(plate(PLATE_WITH_HOLE).boundaries[0].ramp, None);
+    assert_eq!(
+        plate(&with("ramp_time = 50.0")).boundaries[0].ramp,
+        Some(VelocityRamp {
+            duration: 50.0,
+            shape: RampShape::Smooth
+        })
+    );
+    assert_eq!(
+        plate(&with("ramp_time = 5.0\nramp_shape = \"linear\"")).boundaries[0].ramp,
+        Some(VelocityRamp {
+            duration: 5.0,
+            shape: RampShape::Linear
+        })
+    );
+    for (keys, bad, field) in [
+        ("ramp_time = -1.0", "ramp_time", "boundary[top].ramp_time"),
+        (
+            "ramp_time = 5.0\nramp_shape = \"cubic\"",
+            "ramp_shape",
+            "boundary[top].ramp_shape",
+        ),
+        (
+            "ramp_shape = \"linear\"",
+            "ramp_shape",
+            "boundary[top].ramp_shape",
+        ),
+    ] {
+        let text = with(keys);
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert_eq!(e.line, Some(line_of(&text, bad)), "{e}");
+    }
+    // A fixed set has nothing to ramp.
+    let text = PLATE_WITH_HOLE.replace(
+        "fixed = true\ncomponents = [\"x\"]",
+        "fixed = true\ncomponents = [\"x\"]\nramp_time = 5.0",
+    );
+    let e = error_of(&text);
+    assert_eq!(e.field, "boundary[middle-row].ramp_time", "{e}");
+}

@@ -16,7 +16,8 @@ use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Tensor3, Vector};
 use tlsph_solver::{
     BodyDescription, BoundaryDescription, Formulation, KernelKind, MaterialDescription,
-    MaterialModel, Model, Simulation, SimulationConfig, StepError, StressUpdate,
+    MaterialModel, Model, RampShape, Simulation, SimulationConfig, StepError, StressUpdate,
+    VelocityRamp,
 };
 
 /// A lattice block of n[0] × … particles at spacing dx, cell-centred from the origin.
@@ -381,6 +382,7 @@ fn prescribed_and_fixed_particles_follow_their_velocity() {
         particles: vec![0],
         velocity: Vector::<1>::zeros(),
         components: [true],
+        ramp: None,
     });
     m.boundaries.push(BoundaryDescription {
         name: "pull".into(),
@@ -388,6 +390,7 @@ fn prescribed_and_fixed_particles_follow_their_velocity() {
         particles: vec![9],
         velocity: Vector::<1>::new(0.01),
         components: [true],
+        ramp: None,
     });
     let mut sim = Simulation::new(m).unwrap();
     sim.run(|s, _| {
@@ -403,6 +406,115 @@ fn prescribed_and_fixed_particles_follow_their_velocity() {
     );
     // The interior is pulled along: it moved in +x.
     assert!(sim.displacements()[5][0] > 0.0);
+}
+
+/// A clamped 1D rod (40 particles over L ≈ 1) pulled at its last particle at v = 1e-3, with
+/// the pull started by `ramp`. Returns the largest stress difference between the two ends of
+/// the rod (particles 1 and n − 2) from `settled` on, and the final displacement and time of
+/// the pulled particle. A rod pulled at constant speed has the exact quasi-static solution
+/// u = v t X / L of uniform stress, so the difference measures the waves left by the start.
+fn ramped_pull(ramp: Option<VelocityRamp>, settled: f64, end_time: f64) -> (f64, f64, f64) {
+    let dx = 0.025;
+    let n = 40;
+    let speed = 1e-3;
+    let setup = Setup {
+        end_time,
+        ..Setup::default()
+    };
+    let mut m = model(lattice([n], dx), dx, |_| Vector::<1>::zeros(), setup);
+    m.boundaries.push(BoundaryDescription {
+        name: "clamp".into(),
+        body: 0,
+        particles: vec![0],
+        velocity: Vector::<1>::zeros(),
+        components: [true],
+        ramp: None,
+    });
+    m.boundaries.push(BoundaryDescription {
+        name: "pull".into(),
+        body: 0,
+        particles: vec![n - 1],
+        velocity: Vector::<1>::new(speed),
+        components: [true],
+        ramp,
+    });
+    let mut sim = Simulation::new(m).unwrap();
+    let mut difference: f64 = 0.0;
+    sim.run(|s, _| {
+        if s.time() >= settled {
+            let ends = s.stresses()[1][(0, 0)] - s.stresses()[n - 2][(0, 0)];
+            difference = difference.max(ends.abs());
+        }
+    })
+    .unwrap();
+    (difference, sim.displacements()[n - 1][0], sim.time())
+}
+
+#[test]
+fn a_ramped_velocity_moves_its_set_by_the_ramp_integral_and_loads_quasi_statically() {
+    let speed = 1e-3;
+    let duration = 8.0; // 4 periods 2L/c of the clamped rod's fundamental mode
+    let smooth = VelocityRamp {
+        duration,
+        shape: RampShape::Smooth,
+    };
+    let linear = VelocityRamp {
+        duration,
+        shape: RampShape::Linear,
+    };
+    // Both shapes displace the set by v (t − T/2) once t ≥ T; the velocity is imposed at the
+    // mid-point time of each drift, so the sum is the mid-point rule of the ramp integral.
+    for ramp in [smooth, linear] {
+        let (_, u, t) = ramped_pull(Some(ramp), 0.0, 12.0);
+        assert_relative_eq!(u, speed * (t - 0.5 * duration), max_relative = 1e-5);
+    }
+    // Inside a linear ramp: u = v t² / (2T).
+    let (_, u, t) = ramped_pull(Some(linear), 0.0, 4.0);
+    assert_relative_eq!(u, speed * t * t / (2.0 * duration), max_relative = 1e-4);
+    // A sudden start sends a step wave of stress ρcv ≈ 1e-3 (ρ = 1, c ≈ 1) back and forth for
+    // ever: the ends differ by about that much whenever the front is between them. After a
+    // smooth ramp over four periods only a small free vibration is left (the spectrum of its
+    // half-sine acceleration pulse at T/P = 4 is a few per cent of a step's).
+    let (sudden, _, _) = ramped_pull(None, duration, 12.0);
+    let (ramped, _, _) = ramped_pull(Some(smooth), duration, 12.0);
+    assert!(
+        sudden > 0.5 * speed,
+        "sudden start: end difference {sudden:e}"
+    );
+    assert!(
+        ramped < 0.05 * speed,
+        "smooth ramp: end difference {ramped:e}"
+    );
+}
+
+#[test]
+fn a_ramp_without_a_positive_duration_is_rejected() {
+    let dx = 0.1;
+    let mut m = model(
+        lattice([10], dx),
+        dx,
+        |_| Vector::<1>::zeros(),
+        Setup::default(),
+    );
+    m.boundaries.push(BoundaryDescription {
+        name: "pull".into(),
+        body: 0,
+        particles: vec![9],
+        velocity: Vector::<1>::new(0.01),
+        components: [true],
+        ramp: Some(VelocityRamp {
+            duration: 0.0,
+            shape: RampShape::Linear,
+        }),
+    });
+    let Err(error) = Simulation::new(m) else {
+        panic!("a ramp of zero duration must be rejected");
+    };
+    let message = error.to_string();
+    assert!(
+        message.contains("pull") && message.contains("ramp"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -489,6 +601,7 @@ fn bond_metrics_flag_lattice_neighbours_pulled_out_of_the_kernel_support() {
         particles: top.clone(),
         velocity: Vector::<2>::new(0.0, speed),
         components: [true, true],
+        ramp: None,
     });
     m.boundaries.push(BoundaryDescription {
         name: "hold".into(),
@@ -496,6 +609,7 @@ fn bond_metrics_flag_lattice_neighbours_pulled_out_of_the_kernel_support() {
         particles: rest,
         velocity: Vector::<2>::zeros(),
         components: [true, true],
+        ramp: None,
     });
     let mut sim = Simulation::new(m).unwrap();
     sim.step().unwrap();

@@ -38,6 +38,7 @@ fn driven_block(reference_update: Option<f64>) -> Model<2> {
             particles: vec![i],
             velocity: h * x,
             components: [true, true],
+            ramp: None,
         })
         .collect();
     m.effects.reference_update =
