@@ -17,6 +17,7 @@
 //! - R-P9a (quick tier) peak interface stress to 0.1 GPa (1.4 % of 7 GPa), the longest
 //!   lattice-neighbour bond / 2h0 and the target's max/min normalised nearest-neighbour ratio
 //!   to 0.01.
+//! - F-A12 (quick tier) flaw-seed sweep: see the test's comment for its quanta;
 //! - F-A12 / F-A13 (quick tier) damaged-area fractions to 1e-3 (about one particle of the
 //!   835–1521 particle quick lattices: a particle crossing D = 0.5 is a real change, while
 //!   round-off never moves a fraction by a whole particle unless D sits at 0.5 to the last
@@ -157,6 +158,37 @@ fn f_a13_quick_damaged_area_fraction() {
 fn f_a12_quick_damaged_area_fraction() {
     let run = f_a12::simulate(f_a12::QUICK_SPACING);
     insta::assert_snapshot!(damage_fractions(&run, f_a12::END_TIME, 25.0));
+}
+
+/// F-A12 flaw-seed sweep (quick tier): first failure time to 1 t.u. (a few steps) and its
+/// distance from the hole point to 0.1 (a twentieth of Δx), cut-through time to 1 (it is a
+/// sample time, every 10), crack centroids to 0.1 and off-band shares to 0.01 (about one
+/// particle of the ~100-particle damaged sets).
+#[test]
+fn f_a12_quick_flaw_seed_sensitivity() {
+    let (outcomes, _) = f_a12::seed_sweep(f_a12::QUICK_SPACING, &f_a12::SWEEP_SEEDS_QUICK);
+    let mut csv = String::from(
+        "seed,first_failure_time,first_failure_distance,cut_through_time,crack_x_above,crack_x_below,off_band_at_cut,off_band_at_end\n",
+    );
+    let show = |v: Option<f64>, q: f64, digits: usize| {
+        v.map_or("none".into(), |v| format!("{:.digits$}", round(v, q)))
+    };
+    for o in &outcomes {
+        writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{:.2}",
+            o.seed,
+            show(o.first_failure.map(|f| f.0), 1.0, 0),
+            show(o.first_failure.map(|f| f.1), 0.1, 1),
+            show(o.cut_through_time, 1.0, 0),
+            show(o.crack_x.map(|c| c.0), 0.1, 1),
+            show(o.crack_x.map(|c| c.1), 0.1, 1),
+            show(o.off_band.0, 0.01, 2),
+            round(o.off_band.1, 0.01)
+        )
+        .unwrap();
+    }
+    insta::assert_snapshot!(csv);
 }
 
 #[test]

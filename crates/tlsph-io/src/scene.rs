@@ -1309,21 +1309,22 @@ fn build_boundary<const D: usize>(
         }
         (Some(time), shape) => {
             let duration = ctx.positive(time, &field("ramp_time"))?;
-            let shape =
-                match shape {
-                    None => RampShape::Smooth,
-                    Some(s) => match s.get_ref().as_str() {
-                        "smooth" => RampShape::Smooth,
-                        "linear" => RampShape::Linear,
-                        other => return Err(ctx.error(
+            let shape = match shape {
+                None => RampShape::Smooth,
+                Some(s) => match s.get_ref().as_str() {
+                    "smooth" => RampShape::Smooth,
+                    "linear" => RampShape::Linear,
+                    other => {
+                        return Err(ctx.error(
                             &s.span(),
                             &field("ramp_shape"),
                             format!(
                                 "unknown ramp shape `{other}` (expected \"smooth\" or \"linear\")"
                             ),
-                        )),
-                    },
-                };
+                        ))
+                    }
+                },
+            };
             Some(VelocityRamp { duration, shape })
         }
     };
