@@ -363,6 +363,26 @@ fn assert_bit_identical(u1: &[Vector<2>], u2: &[Vector<2>], s1: &[Tensor3], s2: 
         .all(|(x, y)| x.to_bits() == y.to_bits())));
 }
 
+/// Clamps particle 0 of a 1D rod model and pulls particle `pulled` at `speed`, started by `ramp`.
+fn clamp_and_pull(m: &mut Model<1>, pulled: usize, speed: f64, ramp: Option<VelocityRamp>) {
+    m.boundaries.push(BoundaryDescription {
+        name: "clamp".into(),
+        body: 0,
+        particles: vec![0],
+        velocity: Vector::<1>::zeros(),
+        components: [true],
+        ramp: None,
+    });
+    m.boundaries.push(BoundaryDescription {
+        name: "pull".into(),
+        body: 0,
+        particles: vec![pulled],
+        velocity: Vector::<1>::new(speed),
+        components: [true],
+        ramp,
+    });
+}
+
 #[test]
 fn prescribed_and_fixed_particles_follow_their_velocity() {
     let dx = 0.1;
@@ -376,22 +396,7 @@ fn prescribed_and_fixed_particles_follow_their_velocity() {
             ..Setup::default()
         },
     );
-    m.boundaries.push(BoundaryDescription {
-        name: "clamp".into(),
-        body: 0,
-        particles: vec![0],
-        velocity: Vector::<1>::zeros(),
-        components: [true],
-        ramp: None,
-    });
-    m.boundaries.push(BoundaryDescription {
-        name: "pull".into(),
-        body: 0,
-        particles: vec![9],
-        velocity: Vector::<1>::new(0.01),
-        components: [true],
-        ramp: None,
-    });
+    clamp_and_pull(&mut m, 9, 0.01, None);
     let mut sim = Simulation::new(m).unwrap();
     sim.run(|s, _| {
         assert_eq!(s.velocity(0)[0], 0.0);
@@ -422,22 +427,7 @@ fn ramped_pull(ramp: Option<VelocityRamp>, settled: f64, end_time: f64) -> (f64,
         ..Setup::default()
     };
     let mut m = model(lattice([n], dx), dx, |_| Vector::<1>::zeros(), setup);
-    m.boundaries.push(BoundaryDescription {
-        name: "clamp".into(),
-        body: 0,
-        particles: vec![0],
-        velocity: Vector::<1>::zeros(),
-        components: [true],
-        ramp: None,
-    });
-    m.boundaries.push(BoundaryDescription {
-        name: "pull".into(),
-        body: 0,
-        particles: vec![n - 1],
-        velocity: Vector::<1>::new(speed),
-        components: [true],
-        ramp,
-    });
+    clamp_and_pull(&mut m, n - 1, speed, ramp);
     let mut sim = Simulation::new(m).unwrap();
     let mut difference: f64 = 0.0;
     sim.run(|s, _| {
