@@ -166,7 +166,7 @@ fn f_a12_quick_damaged_area_fraction() {
 /// particle of the ~100-particle damaged sets).
 #[test]
 fn f_a12_quick_flaw_seed_sensitivity() {
-    let (outcomes, _) = f_a12::seed_sweep(f_a12::QUICK_SPACING, &f_a12::SWEEP_SEEDS_QUICK);
+    let (outcomes, _) = f_a12::seed_sweep(f_a12::QUICK_SPACING, &f_a12::SWEEP_SEEDS_QUICK, None);
     let mut csv = String::from(
         "seed,first_failure_time,first_failure_distance,cut_through_time,crack_x_above,crack_x_below,off_band_at_cut,off_band_at_end\n",
     );
