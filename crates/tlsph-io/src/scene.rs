@@ -14,8 +14,8 @@ use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
     EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model, ParticleField,
-    PressureModel, RampShape, SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp,
-    WallDescription,
+    PenaltyContactDescription, PressureModel, RampShape, SimulationConfig, StressUpdate,
+    SymmetryPlane, VelocityRamp, WallDescription,
 };
 use toml::Spanned;
 
@@ -664,13 +664,16 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         effects.kernel_groups = Some(groups);
     }
     if let Some(c) = &file.contact {
-        effects.contact = Some(build_contact(
+        match build_contact(
             ctx,
             c,
             &bodies,
             effects.kernel_groups.as_deref(),
             updated_lagrangian,
-        )?);
+        )? {
+            Contact::Potential(c) => effects.contact = Some(c),
+            Contact::Penalty(c) => effects.penalty_contact = Some(c),
+        }
     }
     if updated_lagrangian {
         if let Some(plane) = file.symmetry_plane.first() {
@@ -746,35 +749,108 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
     ))
 }
 
-/// `[contact]` (numerics.md §12.2): scale a > 0, exponent n ≥ 1 (default 4), optional body
-/// pairs by name (default: every pair of different bodies; a body paired with itself is
-/// self-contact). With the updated-Lagrangian formulation bodies of the same material, and
-/// every body with itself, already interact through the kernel, so naming such a pair is an
-/// error (and "all pairs" leaves them out).
+/// The contact law a `[contact]` table declares.
+enum Contact {
+    Potential(ContactDescription),
+    Penalty(PenaltyContactDescription),
+}
+
+/// `[contact]`: `law = "potential"` (default; numerics.md §12.2: scale a > 0, exponent n ≥ 1,
+/// default 4) or `law = "penalty"` (§12.1: stiffness factor > 0 and range > 0, default 1,
+/// friction μ ≥ 0, default 0); the keys of the other law are errors. Optional body pairs by
+/// name (default: every pair of different bodies; a body paired with itself is self-contact,
+/// potential law only). With the updated-Lagrangian formulation bodies of the same kernel
+/// group, and every body with itself, already interact through the kernel, so naming such a
+/// pair is an error (and "all pairs" leaves them out).
 fn build_contact<const D: usize>(
     ctx: &Context<'_>,
     table: &Spanned<crate::scene_file::ContactTable>,
     bodies: &[BodyDescription<D>],
     kernel_groups: Option<&[usize]>,
     updated_lagrangian: bool,
-) -> Result<ContactDescription, SceneError> {
+) -> Result<Contact, SceneError> {
     // Kernel interaction group of a body: the declared one, else its material.
     let group = |b: usize| kernel_groups.map_or(bodies[b].material, |g| g[b]);
     let c = table.get_ref();
-    let scale = ctx.positive(&c.scale, "contact.scale")?;
-    let exponent = match &c.exponent {
-        None => 4.0,
-        Some(e) => {
-            let v = ctx.positive(e, "contact.exponent")?;
-            if v < 1.0 {
+    let penalty = match &c.law {
+        None => false,
+        Some(law) => match law.get_ref().as_str() {
+            "potential" => false,
+            "penalty" => true,
+            other => {
                 return Err(ctx.error(
-                    &e.span(),
-                    "contact.exponent",
-                    format!("must be ≥ 1 (the force must stiffen as particles approach), got {v}"),
-                ));
+                    &law.span(),
+                    "contact.law",
+                    format!("unknown law `{other}`; expected \"potential\" or \"penalty\""),
+                ))
             }
-            v
+        },
+    };
+    // Keys that belong to the other law.
+    let potential_keys = [(&c.scale, "scale"), (&c.exponent, "exponent")];
+    let penalty_keys = [
+        (&c.stiffness, "stiffness"),
+        (&c.range, "range"),
+        (&c.friction, "friction"),
+    ];
+    let foreign: &[(&Option<Spanned<f64>>, &str)] = if penalty {
+        &potential_keys
+    } else {
+        &penalty_keys
+    };
+    for &(value, key) in foreign {
+        if let Some(v) = value {
+            let (this, other) = if penalty {
+                ("penalty", "potential")
+            } else {
+                ("potential", "penalty")
+            };
+            return Err(ctx.error(
+                &v.span(),
+                &format!("contact.{key}"),
+                format!("belongs to law = \"{other}\", not to the {this} law of this table"),
+            ));
         }
+    }
+    let law = if penalty {
+        let factor = |v: &Option<Spanned<f64>>, key: &str| {
+            v.as_ref()
+                .map_or(Ok(1.0), |v| ctx.positive(v, &format!("contact.{key}")))
+        };
+        LawKeys::Penalty {
+            stiffness: factor(&c.stiffness, "stiffness")?,
+            range: factor(&c.range, "range")?,
+            friction: match &c.friction {
+                None => 0.0,
+                Some(v) => ctx.non_negative(v, "contact.friction")?,
+            },
+        }
+    } else {
+        let Some(scale) = &c.scale else {
+            return Err(ctx.error(
+                &table.span(),
+                "contact.scale",
+                "missing: the potential law needs its scale a (e.g. `scale = 2.0`), or set `law = \"penalty\"`".into(),
+            ));
+        };
+        let scale = ctx.positive(scale, "contact.scale")?;
+        let exponent = match &c.exponent {
+            None => 4.0,
+            Some(e) => {
+                let v = ctx.positive(e, "contact.exponent")?;
+                if v < 1.0 {
+                    return Err(ctx.error(
+                        &e.span(),
+                        "contact.exponent",
+                        format!(
+                            "must be ≥ 1 (the force must stiffen as particles approach), got {v}"
+                        ),
+                    ));
+                }
+                v
+            }
+        };
+        LawKeys::Potential { scale, exponent }
     };
     if bodies.len() < 2 && c.pairs.is_none() {
         return Err(ctx.error(
@@ -803,6 +879,11 @@ fn build_contact<const D: usize>(
                     let missing = if find(a).is_none() { a } else { b };
                     return err(format!("no body named `{missing}`"));
                 };
+                if penalty && ia == ib {
+                    return err(format!(
+                        "body `{a}` is paired with itself: the penalty law acts only between particle types (bodies); self-contact needs law = \"potential\""
+                    ));
+                }
                 if updated_lagrangian && ia == ib {
                     return err(format!(
                         "self-contact of body `{a}` needs a total-Lagrangian formulation: with formulation = \"updated-lagrangian\" a body already interacts with itself through the kernel"
@@ -818,11 +899,36 @@ fn build_contact<const D: usize>(
             Some(pairs)
         }
     };
-    Ok(ContactDescription {
-        scale,
-        exponent,
-        pairs,
+    Ok(match law {
+        LawKeys::Potential { scale, exponent } => Contact::Potential(ContactDescription {
+            scale,
+            exponent,
+            pairs,
+        }),
+        LawKeys::Penalty {
+            stiffness,
+            range,
+            friction,
+        } => Contact::Penalty(PenaltyContactDescription {
+            stiffness,
+            range,
+            friction,
+            pairs,
+        }),
     })
+}
+
+/// The law-specific values of a `[contact]` table, checked.
+enum LawKeys {
+    Potential {
+        scale: f64,
+        exponent: f64,
+    },
+    Penalty {
+        stiffness: f64,
+        range: f64,
+        friction: f64,
+    },
 }
 
 fn build_body<const D: usize>(

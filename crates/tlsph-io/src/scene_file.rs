@@ -42,12 +42,17 @@ pub(crate) struct SceneFile {
     pub contact: Option<Spanned<ContactTable>>,
 }
 
-/// `[contact]`: potential-type particle-to-particle contact between bodies (numerics.md §12.2).
+/// `[contact]`: particle-to-particle contact between bodies, potential-type (numerics.md §12.2,
+/// the default) or Fuller's particle-type penalty with friction (`law = "penalty"`, §12.1).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct ContactTable {
-    pub scale: Spanned<f64>,
+    pub law: Option<Spanned<String>>,
+    pub scale: Option<Spanned<f64>>,
     pub exponent: Option<Spanned<f64>>,
+    pub stiffness: Option<Spanned<f64>>,
+    pub range: Option<Spanned<f64>>,
+    pub friction: Option<Spanned<f64>>,
     pub pairs: Option<Spanned<Vec<Vec<String>>>>,
 }
 

@@ -27,15 +27,15 @@ mod updated_lagrangian;
 
 pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
-pub use effects::CONTACT_SKIN_FRACTION;
+pub use effects::{CONTACT_SKIN_FRACTION, SURFACE_FRACTION};
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
     ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
     DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
-    MaterialDescription, MaterialModel, Model, PressureModel, RampShape, ReferenceUpdate,
-    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
-    WallDescription,
+    MaterialDescription, MaterialModel, Model, PenaltyContactDescription, PressureModel, RampShape,
+    ReferenceUpdate, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal,
+    VelocityRamp, WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -208,6 +208,15 @@ impl MaterialModel {
         }
     }
 
+    /// Young's modulus E of the elastic part \[Pa\].
+    pub fn youngs_modulus(&self) -> f64 {
+        match self {
+            MaterialModel::LinearElastic(m) => m.youngs_modulus(),
+            MaterialModel::ElasticPlastic(m) => m.elastic.youngs_modulus(),
+            MaterialModel::ElasticDamage(m) => m.elastic.youngs_modulus(),
+        }
+    }
+
     /// Whether the model carries an effective plastic strain.
     pub fn has_plastic_strain(&self) -> bool {
         matches!(self, MaterialModel::ElasticPlastic(_))
@@ -371,6 +380,9 @@ pub struct EffectsDescription<const D: usize> {
     pub kernel_groups: Option<Vec<usize>>,
     /// Potential-type particle-to-particle contact between bodies (numerics.md §12.2).
     pub contact: Option<ContactDescription>,
+    /// Fuller's particle-type penalty contact with friction (numerics.md §12.1); exclusive
+    /// with `contact` (both would book the `contact` energy column).
+    pub penalty_contact: Option<PenaltyContactDescription>,
     /// Reference-configuration update for the total-Lagrangian formulations (numerics.md
     /// §4 `[C]`): when a particle's strain since the last reference configuration exceeds the
     /// threshold, the current configuration becomes the new reference.
@@ -403,6 +415,24 @@ pub struct ContactDescription {
     /// Body pairs (indices into `Model::bodies`) in contact; `None` = every pair of different
     /// bodies (in the updated-Lagrangian formulation minus those that already interact through
     /// the kernel).
+    pub pairs: Option<Vec<(usize, usize)>>,
+}
+
+/// Fuller's particle-type penalty contact (numerics.md §12.1, F §4.3–4.4): every body is a
+/// particle type; for a surface particle I (at most 75 % of the fully surrounded neighbour
+/// count) with outward normal n̂_I and a particle K of another body in I's zone
+/// (r⊥ = (x_K − x_I)·n̂_I in [−d0, R), tangential offset ≤ d0, d0 = ½(Δx_A + Δx_B)):
+/// f_K = k_c (R/max(r⊥, 0.05R) − 1) n̂_I − μ |f_n| v̂_t, f_I = −f_K, k_c = s E* d0^{d−1}.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PenaltyContactDescription {
+    /// Stiffness factor s of k_c = s E* d0^{d−1} (E* the smaller Young's modulus; Fuller: 1).
+    pub stiffness: f64,
+    /// Range R of the force as a multiple of d0 (Fuller: 1).
+    pub range: f64,
+    /// Coulomb friction coefficient μ (0: frictionless).
+    pub friction: f64,
+    /// Body pairs (indices into `Model::bodies`) in contact; `None` = every pair of different
+    /// bodies (in the updated-Lagrangian formulation minus those of one kernel group).
     pub pairs: Option<Vec<(usize, usize)>>,
 }
 

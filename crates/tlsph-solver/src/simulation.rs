@@ -5,8 +5,8 @@ use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
 use crate::damage::{update_damaged_elastic, DamageState};
 use crate::diagnostics::Diagnostics;
 use crate::effects::{
-    BookedEffect, EffectContext, HourglassControl, MonaghanArtificialStress, MonaghanViscosity,
-    PairLaw, ParticleContact, RigidWall,
+    BookedEffect, Configuration, EffectContext, HourglassControl, MonaghanArtificialStress,
+    MonaghanViscosity, PairLaw, ParticleContact, PenaltyContact, PenaltyPairLaw, RigidWall,
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
@@ -517,8 +517,13 @@ impl<const D: usize> Simulation<D> {
         // lets the force gather apply the kick in the same pass.
         // Effects vote at x^n too (contact stiffness, numerics.md §7); none declared: no vote.
         let mut effect_limit = (f64::INFINITY, usize::MAX);
+        let at = Configuration {
+            particles: &self.particles,
+            bonds: &self.bonds,
+            pairs: self.updated.as_ref().map(|u| &u.pairs),
+        };
         for booked in &mut self.effects {
-            if let Some(limit) = booked.effect.time_step_limit(&self.particles) {
+            if let Some(limit) = booked.effect.time_step_limit(&at) {
                 effect_limit = min_by_value_then_index(effect_limit, limit);
             }
         }
@@ -1777,6 +1782,24 @@ fn build_effects<const D: usize>(
             energy: 0.0,
         });
     }
+    if let Some(contact) = &model.effects.penalty_contact {
+        if model.effects.contact.is_some() {
+            return Err(SetupError::InvalidConfig {
+                field: "penalty_contact",
+                message: "one contact law per run: both the potential and the penalty contact are declared".into(),
+            });
+        }
+        effects.push(BookedEffect {
+            effect: Box::new(build_penalty_contact(
+                model,
+                contact,
+                bodies,
+                kernels,
+                particles.positions0[..n].len(),
+            )?),
+            energy: 0.0,
+        });
+    }
     if let Some(contact) = &model.effects.contact {
         effects.push(BookedEffect {
             effect: Box::new(build_contact(
@@ -1797,11 +1820,7 @@ fn build_effects<const D: usize>(
         }
         let youngs: Vec<f64> = bodies
             .iter()
-            .map(|b| match &model.materials[b.material].model {
-                MaterialModel::LinearElastic(m) => m.youngs_modulus(),
-                MaterialModel::ElasticPlastic(m) => m.elastic.youngs_modulus(),
-                MaterialModel::ElasticDamage(m) => m.elastic.youngs_modulus(),
-            })
+            .map(|b| model.materials[b.material].model.youngs_modulus())
             .collect();
         let hourglass = HourglassControl::new(
             alpha,
@@ -1847,35 +1866,7 @@ fn build_contact<const D: usize>(
         );
     }
     let nb = bodies.len();
-    let updated = model.config.formulation == Formulation::UpdatedLagrangian;
-    let kernel_linked =
-        |a: usize, b: usize| updated && model.kernel_group(a) == model.kernel_group(b);
-    let pairs: Vec<(usize, usize)> = match &contact.pairs {
-        Some(pairs) => {
-            for &(a, b) in pairs {
-                if a >= nb || b >= nb {
-                    return fail(
-                        "contact.pairs",
-                        format!("({a}, {b}) is not a pair of existing bodies"),
-                    );
-                }
-                if kernel_linked(a, b) {
-                    return fail(
-                        "contact.pairs",
-                        format!(
-                            "bodies `{}` and `{}` already interact through the kernel in the updated-Lagrangian formulation (same kernel group); contact would count their interaction twice",
-                            bodies[a].name, bodies[b].name
-                        ),
-                    );
-                }
-            }
-            pairs.clone()
-        }
-        None => (0..nb)
-            .flat_map(|a| (a + 1..nb).map(move |b| (a, b)))
-            .filter(|&(a, b)| !kernel_linked(a, b))
-            .collect(),
-    };
+    let pairs = contact_pairs(model, contact.pairs.as_deref(), bodies, "contact.pairs")?;
     let mut laws: Vec<Option<PairLaw>> = vec![None; nb * nb];
     for (a, b) in pairs {
         let (ba, bb) = (&bodies[a], &bodies[b]);
@@ -1911,6 +1902,108 @@ fn build_contact<const D: usize>(
         nb,
         &body_indices(bodies, n_real),
         positions0,
+    ))
+}
+
+/// The body pairs of a contact law: the declared ones (checked to exist and, in the
+/// updated-Lagrangian formulation, not to share a kernel group) or every pair of different
+/// bodies that does not already interact through the kernel.
+fn contact_pairs<const D: usize>(
+    model: &Model<D>,
+    declared: Option<&[(usize, usize)]>,
+    bodies: &[BodyInfo],
+    field: &'static str,
+) -> Result<Vec<(usize, usize)>, SetupError> {
+    let nb = bodies.len();
+    let updated = model.config.formulation == Formulation::UpdatedLagrangian;
+    let kernel_linked =
+        |a: usize, b: usize| updated && model.kernel_group(a) == model.kernel_group(b);
+    match declared {
+        Some(pairs) => {
+            for &(a, b) in pairs {
+                let message = if a >= nb || b >= nb {
+                    format!("({a}, {b}) is not a pair of existing bodies")
+                } else if kernel_linked(a, b) {
+                    format!(
+                        "bodies `{}` and `{}` already interact through the kernel in the updated-Lagrangian formulation (same kernel group); contact would count their interaction twice",
+                        bodies[a].name, bodies[b].name
+                    )
+                } else {
+                    continue;
+                };
+                return Err(SetupError::InvalidConfig { field, message });
+            }
+            Ok(pairs.to_vec())
+        }
+        None => Ok((0..nb)
+            .flat_map(|a| (a + 1..nb).map(move |b| (a, b)))
+            .filter(|&(a, b)| !kernel_linked(a, b))
+            .collect()),
+    }
+}
+
+/// Fuller's particle-type penalty contact (numerics.md §12.1) for the declared body pairs (or
+/// every pair of different bodies): k_c = s E* d0^{d−1} with E* the smaller Young's modulus,
+/// R = range · d0, friction μ regularised at 1e-6 of the smaller sound speed. A body cannot be
+/// paired with itself (a particle type never contacts itself; use the potential law's
+/// self-contact).
+fn build_penalty_contact<const D: usize>(
+    model: &Model<D>,
+    contact: &crate::model::PenaltyContactDescription,
+    bodies: &[BodyInfo],
+    kernels: &[tlsph_kernels::AnyKernel],
+    n_real: usize,
+) -> Result<PenaltyContact<D>, SetupError> {
+    let fail =
+        |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
+    for (field, value, low, inclusive) in [
+        ("penalty_contact.stiffness", contact.stiffness, 0.0, false),
+        ("penalty_contact.range", contact.range, 0.0, false),
+        ("penalty_contact.friction", contact.friction, 0.0, true),
+    ] {
+        if !(value.is_finite() && (value > low || (inclusive && value == low))) {
+            let bound = if inclusive { "≥" } else { ">" };
+            return fail(
+                field,
+                format!("must be finite and {bound} {low}, got {value}"),
+            );
+        }
+    }
+    let nb = bodies.len();
+    let pairs = contact_pairs(
+        model,
+        contact.pairs.as_deref(),
+        bodies,
+        "penalty_contact.pairs",
+    )?;
+    let mut laws = vec![None; nb * nb];
+    for (a, b) in pairs {
+        if a == b {
+            return fail(
+                "penalty_contact.pairs",
+                format!(
+                    "body `{}` is paired with itself: the particle-type contact acts only between bodies (self-contact needs the potential law)",
+                    bodies[a].name
+                ),
+            );
+        }
+        let youngs = |info: &BodyInfo| model.materials[info.material].model.youngs_modulus();
+        let law = PenaltyPairLaw::new::<D>(
+            contact.stiffness,
+            contact.range,
+            contact.friction,
+            youngs(&bodies[a]).min(youngs(&bodies[b])),
+            bodies[a].sound_speed0.min(bodies[b].sound_speed0),
+            0.5 * (bodies[a].spacing + bodies[b].spacing),
+        );
+        laws[a * nb + b] = Some(law);
+        laws[b * nb + a] = Some(law);
+    }
+    Ok(PenaltyContact::new(
+        laws,
+        nb,
+        kernels.to_vec(),
+        &body_indices(bodies, n_real),
     ))
 }
 
@@ -2084,4 +2177,104 @@ fn validate_body<const D: usize>(
         return fail(format!("particle {i} has a non-finite velocity"));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod penalty_contact_tests {
+    use super::*;
+    use crate::model::{
+        BodyDescription, MaterialDescription, PenaltyContactDescription, SimulationConfig,
+    };
+    use tlsph_kernels::KernelKind;
+    use tlsph_materials::LinearElastic;
+
+    /// An n × n block of spacing 1 with its lower-left particle at `origin`.
+    fn block(name: &str, n: usize, origin: [f64; 2]) -> BodyDescription<2> {
+        let positions: Vec<Vector<2>> = (0..n * n)
+            .map(|k| Vector::<2>::new(origin[0] + (k % n) as f64, origin[1] + (k / n) as f64))
+            .collect();
+        BodyDescription {
+            name: name.into(),
+            material: 0,
+            spacing: 1.0,
+            volumes: vec![1.0; positions.len()],
+            velocities: vec![Vector::zeros(); positions.len()],
+            positions,
+            initial_stress: None,
+        }
+    }
+
+    #[test]
+    fn surface_detection_reproduces_the_lattice_counts_and_normals() {
+        // numerics.md §12.1 item 2, lattice check [A] (2D, h = 1.5Δx, support 3Δx): a fully
+        // surrounded particle has 24 neighbours, a flat face 14 (58 %), the row beneath it 19
+        // (79 %), a convex corner 8 (33 %) and a face particle next to the corner 11 (46 %);
+        // with the 75 % threshold the face and corner rows are surface, the row beneath is not.
+        let model = Model {
+            config: SimulationConfig {
+                formulation: Formulation::TotalLagrangianCorrected,
+                stress_update: crate::model::StressUpdate::JaumannRate,
+                kernel: KernelKind::CubicSpline,
+                smoothing_factor: 1.5,
+                cfl: 0.5,
+                end_time: 1.0,
+            },
+            materials: vec![MaterialDescription {
+                name: "unit".into(),
+                density: 1.0,
+                model: MaterialModel::LinearElastic(LinearElastic::new(1.0, 0.25).unwrap()),
+            }],
+            bodies: vec![block("a", 10, [0.0, 0.0]), block("b", 3, [40.0, 0.0])],
+            boundaries: vec![],
+            effects: Default::default(),
+        };
+        let sim = Simulation::new(model.clone()).unwrap();
+        let description = PenaltyContactDescription {
+            stiffness: 1.0,
+            range: 1.0,
+            friction: 0.0,
+            pairs: None,
+        };
+        let mut contact = build_penalty_contact(
+            &model,
+            &description,
+            &sim.bodies,
+            &sim.kernels,
+            sim.n_particles(),
+        )
+        .unwrap();
+        let at = Configuration {
+            particles: &sim.particles,
+            bonds: &sim.bonds,
+            pairs: None,
+        };
+        let (count, surface, normal) = contact.surface_state(&at);
+        let index = |x: usize, y: usize| y * 10 + x;
+        let expect = [
+            ((5, 5), 24, false),
+            ((5, 0), 14, true),
+            ((5, 1), 19, false),
+            ((0, 0), 8, true),
+            ((1, 0), 11, true),
+        ];
+        for ((x, y), n, is_surface) in expect {
+            let i = index(x, y);
+            assert_eq!(
+                (count[i], surface[i]),
+                (n, is_surface),
+                "particle ({x}, {y})"
+            );
+        }
+        // Normals point out of the body: exactly −y mid-face (mirror symmetry), along the
+        // diagonal at the corner.
+        let face = normal[index(5, 0)];
+        assert!(
+            (face - Vector::<2>::new(0.0, -1.0)).norm() < 1e-12,
+            "{face:?}"
+        );
+        let corner = normal[index(0, 0)];
+        let diagonal = Vector::<2>::new(-1.0, -1.0) / 2f64.sqrt();
+        assert!((corner - diagonal).norm() < 1e-12, "{corner:?}");
+        assert_eq!(normal[index(5, 5)], Vector::<2>::zeros());
+    }
 }

@@ -7,6 +7,7 @@ mod artificial_stress;
 mod hourglass;
 mod monaghan_viscosity;
 mod particle_contact;
+mod penalty_contact;
 mod rigid_wall;
 
 pub use artificial_stress::MonaghanArtificialStress;
@@ -14,6 +15,8 @@ pub use hourglass::HourglassControl;
 pub use monaghan_viscosity::MonaghanViscosity;
 pub(crate) use particle_contact::PairLaw;
 pub use particle_contact::{ParticleContact, CONTACT_SKIN_FRACTION};
+pub(crate) use penalty_contact::PenaltyPairLaw;
+pub use penalty_contact::{PenaltyContact, SURFACE_FRACTION};
 pub use rigid_wall::RigidWall;
 
 use crate::bonds::Bonds;
@@ -30,6 +33,17 @@ pub(crate) struct EffectContext<'a, const D: usize> {
     pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
     /// This step's kick ½(Δt^n + Δt^{n+1}): velocities hold v^{n−½} + kick·a (internal forces).
     pub kick: f64,
+}
+
+/// Read-only view of the configuration at t^n on which effects vote for the time step
+/// (velocities still hold v^{n−½}).
+pub(crate) struct Configuration<'a, const D: usize> {
+    /// Particle state (u^n, F^n, masses, ...).
+    pub particles: &'a Particles<D>,
+    /// Reference bonds (total-Lagrangian formulations).
+    pub bonds: &'a Bonds<D>,
+    /// Current-configuration pairs (updated-Lagrangian formulation only).
+    pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
 }
 
 /// An optional force contribution.
@@ -58,7 +72,7 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
 
     /// The effect's vote on the next step, (Δt limit, limiting particle), evaluated at x^n
     /// before the forces (numerics.md §7); `None` when it does not constrain the step.
-    fn time_step_limit(&mut self, _particles: &Particles<D>) -> Option<(f64, usize)> {
+    fn time_step_limit(&mut self, _at: &Configuration<'_, D>) -> Option<(f64, usize)> {
         None
     }
 

@@ -18,7 +18,7 @@
 //! that were not kernel neighbours in the reference configuration (|X_I − X_K| ≥ 2h), so
 //! self-contact never acts inside the continuum, only between surfaces that meet.
 
-use super::{Effect, EffectContext};
+use super::{Configuration, Effect, EffectContext};
 use crate::particles::Particles;
 use rayon::prelude::*;
 use tlsph_kernels::{AnyKernel, Kernel};
@@ -424,7 +424,8 @@ impl<const D: usize> Effect<D> for ParticleContact<D> {
 
     /// Δt ≤ 0.5 sqrt(m_I / k_I) with k_I the summed tangent stiffness of I's active pairs
     /// (numerics.md §7 `[C]`), evaluated at x^n; also caches the forces at x^n.
-    fn time_step_limit(&mut self, particles: &Particles<D>) -> Option<(f64, usize)> {
+    fn time_step_limit(&mut self, at: &Configuration<'_, D>) -> Option<(f64, usize)> {
+        let particles = at.particles;
         self.evaluate(particles);
         let parts = &self.participants;
         let masses = &particles.masses;

@@ -11,7 +11,7 @@ use tlsph_solver::{
 };
 
 /// Material M-ND2 (ρ 1, E 0.9, ν 0.2 → M = 1, c = 1) and a second, stiffer and denser one.
-fn materials() -> Vec<MaterialDescription> {
+pub(super) fn materials() -> Vec<MaterialDescription> {
     vec![
         MaterialDescription {
             name: "unit".into(),
@@ -26,7 +26,7 @@ fn materials() -> Vec<MaterialDescription> {
     ]
 }
 
-fn body<const D: usize>(
+pub(super) fn body<const D: usize>(
     name: &str,
     material: usize,
     positions: Vec<Vector<D>>,
@@ -44,7 +44,7 @@ fn body<const D: usize>(
     }
 }
 
-fn config(formulation: Formulation, end_time: f64) -> SimulationConfig {
+pub(super) fn config(formulation: Formulation, end_time: f64) -> SimulationConfig {
     SimulationConfig {
         formulation,
         stress_update: StressUpdate::JaumannRate,
@@ -63,7 +63,7 @@ fn contact(scale: f64) -> Option<ContactDescription> {
     })
 }
 
-const V: f64 = 0.01;
+pub(super) const V: f64 = 0.01;
 
 /// Two identical 1D (uniaxial-strain) bars of length L = n dx approach at ±v; the faces
 /// (half a spacing beyond the outer particles) start a gap of `gap` apart.
@@ -100,7 +100,7 @@ fn bars_1d(n: usize, formulation: Formulation, scale: f64, end_time: f64) -> Mod
 }
 
 /// Mean velocity of a body.
-fn body_velocity<const D: usize>(sim: &Simulation<D>, b: usize) -> Vector<D> {
+pub(super) fn body_velocity<const D: usize>(sim: &Simulation<D>, b: usize) -> Vector<D> {
     let r = sim.bodies()[b].range.clone();
     let n = r.len() as f64;
     r.map(|i| sim.velocity(i)).sum::<Vector<D>>() / n

@@ -6,6 +6,7 @@ mod contact;
 mod damage;
 mod effects;
 mod long_runs;
+mod penalty_contact;
 mod plasticity;
 mod reference_update;
 mod symmetry;
