@@ -316,7 +316,7 @@ fn f_a3_disc_rebound_velocities() {
 
 #[test]
 fn f_a3_tl_mode_rebound_velocities() {
-    // TLSPH discs in particle contact: V/U to 1e-3 (0.1 % of U; the rebound of r = 10 moves
+    // TLSPH discs in Fuller penalty contact: V/U to 1e-3 (0.1 % of U; the rebound of r = 10 moves
     // by 2 % between lattice resolutions, so a real change of the contact or the hourglass
     // control shows), and the speed independence of linear elasticity.
     use tlsph_validation::problems::f_a3;

@@ -133,6 +133,19 @@ pub fn tl_contact_effects(pairs: &[(&str, &str)]) -> String {
     )
 }
 
+/// TL mode's effects with Fuller's particle-type penalty contact (numerics.md §12.1: stiffness
+/// E* d0^{d−1}, range d0, friction μ) between the named body pairs, and hourglass control.
+pub fn tl_penalty_effects(pairs: &[(&str, &str)], friction: f64) -> String {
+    let pairs: Vec<String> = pairs
+        .iter()
+        .map(|(a, b)| format!("[\"{a}\", \"{b}\"]"))
+        .collect();
+    format!(
+        "\n[contact]\nlaw = \"penalty\"\nfriction = {friction}\npairs = [{}]\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
+        pairs.join(", ")
+    )
+}
+
 /// Parses a 2D scene written by this harness.
 pub fn parse(text: &str, what: &str) -> Model<2> {
     match parse_scene(text, what).map(|s| s.model) {
