@@ -123,26 +123,27 @@ pub const HOURGLASS: f64 = 1.0;
 /// TL mode's effects: the particle contact between the named body pairs (a body named
 /// twice: self-contact) and hourglass control.
 pub fn tl_contact_effects(pairs: &[(&str, &str)]) -> String {
+    format!(
+        "\n[contact]\nscale = {CONTACT_SCALE}\npairs = {}\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
+        pair_list(pairs)
+    )
+}
+
+/// The scene's `pairs = [["a", "b"], ...]` value for the named body pairs.
+fn pair_list(pairs: &[(&str, &str)]) -> String {
     let pairs: Vec<String> = pairs
         .iter()
         .map(|(a, b)| format!("[\"{a}\", \"{b}\"]"))
         .collect();
-    format!(
-        "\n[contact]\nscale = {CONTACT_SCALE}\npairs = [{}]\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
-        pairs.join(", ")
-    )
+    format!("[{}]", pairs.join(", "))
 }
 
 /// TL mode's effects with Fuller's particle-type penalty contact (numerics.md §12.1: stiffness
 /// E* d0^{d−1}, range d0, friction μ) between the named body pairs, and hourglass control.
 pub fn tl_penalty_effects(pairs: &[(&str, &str)], friction: f64) -> String {
-    let pairs: Vec<String> = pairs
-        .iter()
-        .map(|(a, b)| format!("[\"{a}\", \"{b}\"]"))
-        .collect();
     format!(
-        "\n[contact]\nlaw = \"penalty\"\nfriction = {friction}\npairs = [{}]\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
-        pairs.join(", ")
+        "\n[contact]\nlaw = \"penalty\"\nfriction = {friction}\npairs = {}\n\n[hourglass_control]\ncoefficient = {HOURGLASS}\n",
+        pair_list(pairs)
     )
 }
 

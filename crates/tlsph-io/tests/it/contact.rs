@@ -141,14 +141,7 @@ fn a_contact_run_books_its_energy_column_and_closes() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
-    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
-    let mut lines = energy.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let contact = header.iter().position(|h| h.contains("contact")).unwrap();
-    let total = header.iter().position(|h| h.contains("total")).unwrap();
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
+    let (rows, contact, total) = energy_rows(&dir);
     assert!(
         rows.iter().any(|r| r[contact] > 0.0),
         "contact stored energy"
@@ -159,6 +152,19 @@ fn a_contact_run_books_its_energy_column_and_closes() {
     for r in &rows {
         assert!((r[total] - e0).abs() < 1.5e-2 * e0, "{r:?}");
     }
+}
+
+/// Rows of a run's `energy.csv` with the indices of its contact and total columns.
+fn energy_rows(dir: &std::path::Path) -> (Vec<Vec<f64>>, usize, usize) {
+    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
+    let mut lines = energy.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let contact = header.iter().position(|h| h.contains("contact")).unwrap();
+    let total = header.iter().position(|h| h.contains("total")).unwrap();
+    let rows = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (rows, contact, total)
 }
 
 /// `TWO_BARS` with Fuller's penalty law instead of the potential one.
@@ -240,14 +246,7 @@ fn a_penalty_contact_run_books_its_work_and_closes() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
-    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
-    let mut lines = energy.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let contact = header.iter().position(|h| h.contains("contact")).unwrap();
-    let total = header.iter().position(|h| h.contains("total")).unwrap();
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
+    let (rows, contact, total) = energy_rows(&dir);
     let e0 = rows[0][total];
     assert!(rows.iter().any(|r| r[contact] > 1e-2 * e0), "contact work");
     for r in &rows {

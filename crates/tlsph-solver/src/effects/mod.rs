@@ -4,6 +4,7 @@
 //! not declare is not in the list: it allocates nothing and costs nothing.
 
 mod artificial_stress;
+mod contact_candidates;
 mod hourglass;
 mod monaghan_viscosity;
 mod particle_contact;

@@ -18,12 +18,12 @@
 //! that were not kernel neighbours in the reference configuration (|X_I − X_K| ≥ 2h), so
 //! self-contact never acts inside the continuum, only between surfaces that meet.
 
+use super::contact_candidates::{ContactCandidates, MIN_PER_TASK};
 use super::{Configuration, Effect, EffectContext};
 use crate::particles::Particles;
 use rayon::prelude::*;
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
-use tlsph_neighbours::CellGrid;
 
 /// Verlet skin as a fraction of the smallest contact distance d0: the candidate list holds
 /// every cross-body pair within (largest d0 + skin) and is rebuilt once any participating
@@ -35,12 +35,6 @@ pub const CONTACT_SKIN_FRACTION: f64 = 0.5;
 
 /// Safety factor of the contact time-step bound Δt ≤ 0.5 sqrt(m/k) (numerics.md §7 `[C]`).
 const DT_FACTOR: f64 = 0.5;
-
-/// Particles per parallel task.
-const MIN_PER_TASK: usize = 256;
-
-/// Chunk length of the deterministic energy/force sums.
-const CHUNK: usize = 4096;
 
 /// 8-point Gauss–Legendre nodes and weights on [−1, 1] (exact for polynomials of degree 15:
 /// the cubic-spline integrand (W/W0)⁴ − 1 is of degree 12 on each kernel piece).
@@ -167,33 +161,14 @@ pub struct ParticleContact<const D: usize> {
     n_bodies: usize,
     /// Law per ordered body pair (A · n_bodies + B), `None` when the pair has no contact.
     laws: Vec<Option<Law>>,
-    /// Global index of each participating particle (ascending).
-    participants: Vec<u32>,
-    /// Participant index of each real particle (`u32::MAX` if it takes no part).
-    local: Vec<u32>,
-    /// Body of each participant.
-    body: Vec<u32>,
+    /// Participants, their current positions and candidate partners.
+    candidates: ContactCandidates<D>,
     /// Reference positions of the participants (self-contact exclusion).
     positions0: Vec<Vector<D>>,
-    /// Body whose contact force is reported as the resultant.
-    reported_body: u32,
-    skin: f64,
-    /// Candidate search radius: largest d0 + skin \[m\].
-    radius: f64,
-    /// Current positions of the participants (scratch).
-    positions: Vec<Vector<D>>,
-    /// Positions at the last rebuild.
-    positions_at_build: Vec<Vector<D>>,
-    /// CSR candidate lists (participant indices of other bodies within `radius` at the build).
-    offsets: Vec<usize>,
-    candidates: Vec<u32>,
-    rebuilds: u64,
     /// Per participant: contact force, half of its pairs' potential, summed pair stiffness.
     force: Vec<Vector<D>>,
     half_potential: Vec<f64>,
     stiffness: Vec<f64>,
-    /// Per-chunk (potential, force on the reported body).
-    chunk_sums: Vec<(f64, Vector<D>)>,
     stored: f64,
     resultant: Vector<D>,
     /// Forces hold the current positions (set by `time_step_limit`, used by `accelerations`).
@@ -229,24 +204,21 @@ impl<const D: usize> ParticleContact<D> {
                 })
             })
             .collect();
-        let takes_part = |b: usize| (0..n_bodies).any(|other| laws[b * n_bodies + other].is_some());
-        let mut local = vec![u32::MAX; body_of.len()];
-        let mut participants = Vec::new();
-        let mut body = Vec::new();
-        let mut reference = Vec::new();
-        for (i, &b) in body_of.iter().enumerate() {
-            if takes_part(b as usize) {
-                local[i] = participants.len() as u32;
-                participants.push(i as u32);
-                body.push(b);
-                reference.push(positions0[i]);
-            }
-        }
+        let takes_part = |b: u32| {
+            let row = b as usize * n_bodies;
+            laws[row..row + n_bodies].iter().any(Option::is_some)
+        };
         let d0s = laws.iter().flatten().map(|l| l.d0);
         let min_d0 = d0s.clone().fold(f64::INFINITY, f64::min);
         let max_d0 = d0s.fold(0.0, f64::max);
-        let skin = CONTACT_SKIN_FRACTION * min_d0;
-        let n = participants.len();
+        let candidates =
+            ContactCandidates::new(body_of, takes_part, max_d0, CONTACT_SKIN_FRACTION * min_d0);
+        let reference = candidates
+            .participants()
+            .iter()
+            .map(|&i| positions0[i as usize])
+            .collect();
+        let n = candidates.len();
         let power = if exponent.fract() == 0.0 && exponent.abs() < 64.0 {
             Power::Integer(exponent as i32)
         } else {
@@ -257,22 +229,11 @@ impl<const D: usize> ParticleContact<D> {
             power,
             n_bodies,
             laws,
-            reported_body: body.first().copied().unwrap_or(0),
-            participants,
-            local,
-            body,
+            candidates,
             positions0: reference,
-            skin,
-            radius: max_d0 + skin,
-            positions: vec![Vector::zeros(); n],
-            positions_at_build: Vec::new(),
-            offsets: Vec::with_capacity(n + 1),
-            candidates: Vec::new(),
-            rebuilds: 0,
             force: vec![Vector::zeros(); n],
             half_potential: vec![0.0; n],
             stiffness: vec![0.0; n],
-            chunk_sums: Vec::with_capacity(n.div_ceil(CHUNK)),
             stored: 0.0,
             resultant: Vector::zeros(),
             evaluated: false,
@@ -282,34 +243,20 @@ impl<const D: usize> ParticleContact<D> {
     /// Current positions, a rebuild of the candidate list if needed, and forces, potentials
     /// and stiffnesses at x^n (one gather per participant).
     fn evaluate(&mut self, p: &Particles<D>) {
-        let parts = &self.participants;
-        self.positions
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .for_each(|(k, x)| {
-                let i = parts[k] as usize;
-                *x = p.positions0[i] + p.displacements[i];
-            });
-        let half_skin_sq = 0.25 * self.skin * self.skin;
-        let stale = self.positions_at_build.len() != self.positions.len()
-            || self
-                .positions
-                .par_iter()
-                .zip(self.positions_at_build.par_iter())
-                .any(|(x, x_b)| {
-                    // NaN counts as moved (the rebuild then finds no candidates).
-                    let moved = (x - x_b).norm_squared();
-                    moved.is_nan() || moved > half_skin_sq
-                });
-        if stale {
-            self.rebuild();
-        }
-        let (n, exponent) = (self.power, self.exponent);
-        let (x, offsets, candidates, body) =
-            (&self.positions, &self.offsets, &self.candidates, &self.body);
-        let (laws, n_bodies, skin) = (&self.laws, self.n_bodies, self.skin);
+        let (laws, n_bodies, positions0) = (&self.laws, self.n_bodies, &self.positions0);
         let law = |a: u32, b: u32| laws[a as usize * n_bodies + b as usize].as_ref();
+        // Candidates: a participant of a body in contact; for self-contact, never a reference
+        // kernel neighbour (nor I itself) — the exclusion is 0 between different bodies.
+        self.candidates.refresh(p, |k, bk, j, bj| {
+            law(bk, bj).is_some_and(|law| {
+                bj != bk
+                    || (positions0[j] - positions0[k]).norm_squared()
+                        >= law.exclusion_sq.max(f64::MIN_POSITIVE)
+            })
+        });
+        let (n, exponent) = (self.power, self.exponent);
+        let candidates = &self.candidates;
+        let (x, body, skin) = (candidates.positions(), candidates.body(), candidates.skin());
         self.force
             .par_iter_mut()
             .zip(self.half_potential.par_iter_mut())
@@ -319,7 +266,7 @@ impl<const D: usize> ParticleContact<D> {
             .for_each(|(k, ((f, e), s))| {
                 let (mut force, mut energy, mut stiffness) = (Vector::<D>::zeros(), 0.0, 0.0);
                 let xk = x[k];
-                for &j in &candidates[offsets[k]..offsets[k + 1]] {
+                for &j in candidates.of(k) {
                     let j = j as usize;
                     let Some(law) = law(body[k], body[j]) else {
                         continue;
@@ -348,68 +295,8 @@ impl<const D: usize> ParticleContact<D> {
                 *s = stiffness;
             });
         // Stored energy and the reported body's force, summed in fixed chunks.
-        let (potential, force, body) = (&self.half_potential, &self.force, &self.body);
-        let reported = self.reported_body;
-        (0..potential.len().div_ceil(CHUNK))
-            .into_par_iter()
-            .map(|c| {
-                let range = c * CHUNK..((c + 1) * CHUNK).min(potential.len());
-                let mut f = Vector::<D>::zeros();
-                for k in range.clone() {
-                    if body[k] == reported {
-                        f += force[k];
-                    }
-                }
-                (potential[range].iter().sum::<f64>(), f)
-            })
-            .collect_into_vec(&mut self.chunk_sums);
-        let (stored, resultant) = self
-            .chunk_sums
-            .iter()
-            .fold((0.0, Vector::<D>::zeros()), |(e, f), (ce, cf)| {
-                (e + ce, f + cf)
-            });
-        self.stored = stored;
-        self.resultant = resultant;
+        (self.stored, self.resultant) = self.candidates.totals(&self.half_potential, &self.force);
         self.evaluated = true;
-    }
-
-    /// Rebuilds the candidate lists: every participant of another body in contact (or of
-    /// the same body with self-contact, beyond its reference exclusion) within `radius`,
-    /// ascending. Allocates only the cell grid (and the lists if they grow).
-    fn rebuild(&mut self) {
-        self.offsets.clear();
-        self.candidates.clear();
-        self.offsets.push(0);
-        // Non-finite positions: no candidates (the step reports the non-finite state).
-        if let Ok(grid) = CellGrid::new(&self.positions, self.radius) {
-            let r2 = self.radius * self.radius;
-            for (k, x) in self.positions.iter().enumerate() {
-                let start = self.candidates.len();
-                let bk = self.body[k];
-                let x0 = self.positions0[k];
-                grid.for_each_candidate_with_position(x, |j, xj| {
-                    let bj = self.body[j as usize];
-                    let Some(law) = &self.laws[bk as usize * self.n_bodies + bj as usize] else {
-                        return;
-                    };
-                    // Self-contact: never between reference kernel neighbours (nor I with
-                    // itself); the exclusion is 0 between different bodies.
-                    let own_continuum = bj == bk
-                        && (self.positions0[j as usize] - x0).norm_squared()
-                            < law.exclusion_sq.max(f64::MIN_POSITIVE);
-                    if !own_continuum && (xj - x).norm_squared() < r2 {
-                        self.candidates.push(j);
-                    }
-                });
-                self.candidates[start..].sort_unstable();
-                self.offsets.push(self.candidates.len());
-            }
-        } else {
-            self.offsets.resize(self.positions.len() + 1, 0);
-        }
-        self.positions_at_build.clone_from(&self.positions);
-        self.rebuilds += 1;
     }
 }
 
@@ -425,20 +312,9 @@ impl<const D: usize> Effect<D> for ParticleContact<D> {
     /// Δt ≤ 0.5 sqrt(m_I / k_I) with k_I the summed tangent stiffness of I's active pairs
     /// (numerics.md §7 `[C]`), evaluated at x^n; also caches the forces at x^n.
     fn time_step_limit(&mut self, at: &Configuration<'_, D>) -> Option<(f64, usize)> {
-        let particles = at.particles;
-        self.evaluate(particles);
-        let parts = &self.participants;
-        let masses = &particles.masses;
-        self.stiffness
-            .par_iter()
-            .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .filter(|(_, k)| **k > 0.0)
-            .map(|(k, s)| {
-                let i = parts[k] as usize;
-                (DT_FACTOR * (masses[i] / s).sqrt(), i)
-            })
-            .reduce_with(crate::simulation::min_by_value_then_index)
+        self.evaluate(at.particles);
+        self.candidates
+            .stiffness_time_step(&self.stiffness, &at.particles.masses, DT_FACTOR)
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
@@ -446,16 +322,8 @@ impl<const D: usize> Effect<D> for ParticleContact<D> {
             self.evaluate(ctx.particles);
         }
         self.evaluated = false;
-        let (local, force, masses) = (&self.local, &self.force, &ctx.particles.masses);
-        out.par_iter_mut()
-            .enumerate()
-            .with_min_len(1024)
-            .for_each(|(i, a)| {
-                let k = local[i];
-                if k != u32::MAX {
-                    *a = force[k as usize] / masses[i];
-                }
-            });
+        self.candidates
+            .scatter_accelerations(&self.force, &ctx.particles.masses, out);
     }
 
     fn stored_energy(&self) -> Option<f64> {
@@ -467,6 +335,6 @@ impl<const D: usize> Effect<D> for ParticleContact<D> {
     }
 
     fn contact_rebuilds(&self) -> Option<u64> {
-        Some(self.rebuilds)
+        Some(self.candidates.rebuilds())
     }
 }

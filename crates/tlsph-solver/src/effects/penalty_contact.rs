@@ -41,11 +41,11 @@
 //! Not built: Fuller's multiple-normal refinement and the corner class (n_I ≤ 0.5 n_full), which
 //! only that refinement uses.
 
+use super::contact_candidates::{ContactCandidates, MIN_PER_TASK};
 use super::{Configuration, Effect, EffectContext};
 use rayon::prelude::*;
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
-use tlsph_neighbours::CellGrid;
 
 /// Surface threshold: a particle with at most this fraction of the fully surrounded neighbour
 /// count is a surface particle (F §4.3.1: 75 %). The lattice check of numerics.md §12.1 puts a
@@ -66,12 +66,6 @@ const SKIN_FRACTION: f64 = 0.5;
 
 /// Safety factor of the contact time-step bound Δt ≤ 0.5 sqrt(m/k) (numerics.md §7 `[C]`).
 const DT_FACTOR: f64 = 0.5;
-
-/// Particles per parallel task.
-const MIN_PER_TASK: usize = 256;
-
-/// Chunk length of the deterministic resultant sum.
-const CHUNK: usize = 4096;
 
 /// Penalty law of one pair of bodies (numerics.md §12.1).
 #[derive(Debug, Clone, Copy)]
@@ -202,24 +196,9 @@ pub struct PenaltyContact<const D: usize> {
     kernels: Vec<AnyKernel>,
     /// Fully surrounded neighbour count of each body (set at the first evaluation).
     full_count: Vec<usize>,
-    /// Global index of each participating particle (ascending).
-    participants: Vec<u32>,
-    /// Participant index of each real particle (`u32::MAX` if it takes no part).
-    local: Vec<u32>,
-    /// Body of each participant.
-    body: Vec<u32>,
-    /// Body whose contact force is reported as the resultant.
-    reported_body: u32,
-    skin: f64,
-    /// Candidate search radius: the largest zone reach sqrt(R² + d0²) + skin \[m\].
-    radius: f64,
-    /// Current positions of the participants (scratch).
-    positions: Vec<Vector<D>>,
-    positions_at_build: Vec<Vector<D>>,
-    /// CSR candidate lists (participants of other bodies within `radius` at the build).
-    offsets: Vec<usize>,
-    candidates: Vec<u32>,
-    rebuilds: u64,
+    /// Participants, their current positions and candidate partners (searched within the
+    /// largest zone reach sqrt(R² + d0²) plus the skin).
+    candidates: ContactCandidates<D>,
     /// Per participant: same-type neighbour count, surface flag, unit outward normal (zero for
     /// interior particles).
     count: Vec<usize>,
@@ -229,7 +208,6 @@ pub struct PenaltyContact<const D: usize> {
     velocity: Vec<Vector<D>>,
     force: Vec<Vector<D>>,
     stiffness: Vec<f64>,
-    chunk_sums: Vec<Vector<D>>,
     resultant: Vector<D>,
     /// Geometry holds x^n (set by `time_step_limit`, used by `accelerations`).
     prepared: bool,
@@ -245,48 +223,31 @@ impl<const D: usize> PenaltyContact<D> {
         kernels: Vec<AnyKernel>,
         body_of: &[u32],
     ) -> Self {
-        let takes_part = |b: usize| (0..n_bodies).any(|other| laws[b * n_bodies + other].is_some());
-        let mut local = vec![u32::MAX; body_of.len()];
-        let mut participants = Vec::new();
-        let mut body = Vec::new();
-        for (i, &b) in body_of.iter().enumerate() {
-            if takes_part(b as usize) {
-                local[i] = participants.len() as u32;
-                participants.push(i as u32);
-                body.push(b);
-            }
-        }
+        let takes_part = |b: u32| {
+            let row = b as usize * n_bodies;
+            laws[row..row + n_bodies].iter().any(Option::is_some)
+        };
         let active = laws.iter().flatten();
         let min_reach = active
             .clone()
             .map(|l| l.reach)
             .fold(f64::INFINITY, f64::min);
         let max_zone = active.map(|l| l.range.hypot(l.reach)).fold(0.0, f64::max);
-        let skin = SKIN_FRACTION * min_reach;
-        let n = participants.len();
+        let candidates =
+            ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach);
+        let n = candidates.len();
         Self {
             n_bodies,
             laws,
             kernels,
             full_count: vec![0; n_bodies],
-            reported_body: body.first().copied().unwrap_or(0),
-            participants,
-            local,
-            body,
-            skin,
-            radius: max_zone + skin,
-            positions: vec![Vector::zeros(); n],
-            positions_at_build: Vec::new(),
-            offsets: Vec::with_capacity(n + 1),
-            candidates: Vec::new(),
-            rebuilds: 0,
+            candidates,
             count: vec![0; n],
             surface: vec![false; n],
             normal: vec![Vector::zeros(); n],
             velocity: vec![Vector::zeros(); n],
             force: vec![Vector::zeros(); n],
             stiffness: vec![0.0; n],
-            chunk_sums: Vec::with_capacity(n.div_ceil(CHUNK)),
             resultant: Vector::zeros(),
             prepared: false,
         }
@@ -334,27 +295,16 @@ impl<const D: usize> PenaltyContact<D> {
     fn prepare(&mut self, at: &Configuration<'_, D>) {
         let p = at.particles;
         let position = |j: usize| p.positions0[j] + p.displacements[j];
-        let parts = &self.participants;
-        self.positions
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .for_each(|(k, x)| *x = position(parts[k] as usize));
-        let half_skin_sq = 0.25 * self.skin * self.skin;
-        let stale = self.positions_at_build.len() != self.positions.len()
-            || self
-                .positions
-                .par_iter()
-                .zip(self.positions_at_build.par_iter())
-                .any(|(x, x_b)| {
-                    let moved = (x - x_b).norm_squared();
-                    moved.is_nan() || moved > half_skin_sq
-                });
-        if stale {
-            self.rebuild();
-        }
+        let (laws, n_bodies) = (&self.laws, self.n_bodies);
+        self.candidates.refresh(p, |_, bk, _, bj| {
+            laws[bk as usize * n_bodies + bj as usize].is_some()
+        });
         // 1. Same-type neighbour counts.
-        let (kernels, body, parts) = (&self.kernels, &self.body, &self.participants);
+        let (kernels, body, parts) = (
+            &self.kernels,
+            self.candidates.body(),
+            self.candidates.participants(),
+        );
         let support = |k: usize| kernels[body[k] as usize].support_radius();
         self.count
             .par_iter_mut()
@@ -366,7 +316,7 @@ impl<const D: usize> PenaltyContact<D> {
             });
         if self.full_count.iter().all(|&c| c == 0) {
             for (k, &c) in self.count.iter().enumerate() {
-                let b = self.body[k] as usize;
+                let b = body[k] as usize;
                 self.full_count[b] = self.full_count[b].max(c);
             }
         }
@@ -411,33 +361,6 @@ impl<const D: usize> PenaltyContact<D> {
         self.prepared = true;
     }
 
-    /// Rebuilds the candidate lists: every participant of a body in contact with this one
-    /// within `radius`, ascending. Allocates only the cell grid (and the lists if they grow).
-    fn rebuild(&mut self) {
-        self.offsets.clear();
-        self.candidates.clear();
-        self.offsets.push(0);
-        if let Ok(grid) = CellGrid::new(&self.positions, self.radius) {
-            let r2 = self.radius * self.radius;
-            for (k, x) in self.positions.iter().enumerate() {
-                let start = self.candidates.len();
-                let row = self.body[k] as usize * self.n_bodies;
-                grid.for_each_candidate_with_position(x, |j, xj| {
-                    let bj = self.body[j as usize] as usize;
-                    if self.laws[row + bj].is_some() && (xj - x).norm_squared() < r2 {
-                        self.candidates.push(j);
-                    }
-                });
-                self.candidates[start..].sort_unstable();
-                self.offsets.push(self.candidates.len());
-            }
-        } else {
-            self.offsets.resize(self.positions.len() + 1, 0);
-        }
-        self.positions_at_build.clone_from(&self.positions);
-        self.rebuilds += 1;
-    }
-
     /// Whether surface participant `a` defines the normal of its pair with `b` (numerics.md
     /// §12.1 `[C]`, in place of Fuller's multiple-normal refinement): `a` is a surface
     /// particle and `b` is not a flatter one (a surface particle with more same-type
@@ -463,7 +386,8 @@ impl<const D: usize> PenaltyContact<D> {
     /// Law between the bodies of participants `a` and `b`.
     #[inline]
     fn law(&self, a: usize, b: usize) -> Option<&PenaltyPairLaw> {
-        self.laws[self.body[a] as usize * self.n_bodies + self.body[b] as usize].as_ref()
+        let body = self.candidates.body();
+        self.laws[body[a] as usize * self.n_bodies + body[b] as usize].as_ref()
     }
 }
 
@@ -482,15 +406,15 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         self.prepare(at);
         let mut stiffness = std::mem::take(&mut self.stiffness);
         let this = &*self;
-        let (x, normal) = (&this.positions, &this.normal);
-        let (offsets, candidates, skin) = (&this.offsets, &this.candidates, this.skin);
+        let (x, normal) = (this.candidates.positions(), &this.normal);
+        let skin = this.candidates.skin();
         stiffness
             .par_iter_mut()
             .enumerate()
             .with_min_len(MIN_PER_TASK)
             .for_each(|(k, s)| {
                 let mut sum = 0.0;
-                for &q in &candidates[offsets[k]..offsets[k + 1]] {
+                for &q in this.candidates.of(k) {
                     let q = q as usize;
                     let Some(law) = this.law(k, q) else {
                         continue;
@@ -506,17 +430,8 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                 *s = sum;
             });
         self.stiffness = stiffness;
-        let (parts, masses) = (&self.participants, &at.particles.masses);
-        self.stiffness
-            .par_iter()
-            .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .filter(|(_, s)| **s > 0.0)
-            .map(|(k, s)| {
-                let i = parts[k] as usize;
-                (DT_FACTOR * (masses[i] / s).sqrt(), i)
-            })
-            .reduce_with(crate::simulation::min_by_value_then_index)
+        self.candidates
+            .stiffness_time_step(&self.stiffness, &at.particles.masses, DT_FACTOR)
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
@@ -529,7 +444,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         }
         self.prepared = false;
         let p = ctx.particles;
-        let parts = &self.participants;
+        let parts = self.candidates.participants();
         // Velocity at t^n: undo half of this step's kick.
         self.velocity
             .par_iter_mut()
@@ -541,15 +456,14 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
             });
         let mut force = std::mem::take(&mut self.force);
         let this = &*self;
-        let (x, v, normal) = (&this.positions, &this.velocity, &this.normal);
-        let (offsets, candidates) = (&this.offsets, &this.candidates);
+        let (x, v, normal) = (this.candidates.positions(), &this.velocity, &this.normal);
         force
             .par_iter_mut()
             .enumerate()
             .with_min_len(MIN_PER_TASK)
             .for_each(|(k, f)| {
                 let mut sum = Vector::<D>::zeros();
-                for &q in &candidates[offsets[k]..offsets[k + 1]] {
+                for &q in this.candidates.of(k) {
                     let q = q as usize;
                     let Some(law) = this.law(k, q) else {
                         continue;
@@ -575,34 +489,9 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
             });
         self.force = force;
         // Force on the reported body, summed in fixed chunks.
-        let (force, body, reported) = (&self.force, &self.body, self.reported_body);
-        (0..force.len().div_ceil(CHUNK))
-            .into_par_iter()
-            .map(|c| {
-                let range = c * CHUNK..((c + 1) * CHUNK).min(force.len());
-                let mut f = Vector::<D>::zeros();
-                for k in range {
-                    if body[k] == reported {
-                        f += force[k];
-                    }
-                }
-                f
-            })
-            .collect_into_vec(&mut self.chunk_sums);
-        self.resultant = self
-            .chunk_sums
-            .iter()
-            .fold(Vector::<D>::zeros(), |a, b| a + b);
-        let (local, force, masses) = (&self.local, &self.force, &p.masses);
-        out.par_iter_mut()
-            .enumerate()
-            .with_min_len(1024)
-            .for_each(|(i, a)| {
-                let k = local[i];
-                if k != u32::MAX {
-                    *a = force[k as usize] / masses[i];
-                }
-            });
+        self.resultant = self.candidates.totals(&[], &self.force).1;
+        self.candidates
+            .scatter_accelerations(&self.force, &p.masses, out);
     }
 
     fn resultant(&self) -> Option<Vector<D>> {
@@ -610,6 +499,6 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
     }
 
     fn contact_rebuilds(&self) -> Option<u64> {
-        Some(self.rebuilds)
+        Some(self.candidates.rebuilds())
     }
 }

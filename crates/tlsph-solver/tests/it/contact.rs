@@ -66,10 +66,17 @@ fn contact(scale: f64) -> Option<ContactDescription> {
 pub(super) const V: f64 = 0.01;
 
 /// Two identical 1D (uniaxial-strain) bars of length L = n dx approach at ±v; the faces
-/// (half a spacing beyond the outer particles) start a gap of `gap` apart.
-fn bars_1d(n: usize, formulation: Formulation, scale: f64, end_time: f64) -> Model<1> {
+/// (half a spacing beyond the outer particles) start `gap_fraction` dx apart; `effects` holds
+/// the contact under test.
+pub(super) fn approaching_bars(
+    n: usize,
+    formulation: Formulation,
+    end_time: f64,
+    gap_fraction: f64,
+    effects: tlsph_solver::EffectsDescription<1>,
+) -> Model<1> {
     let dx = 1.0 / n as f64;
-    let gap = 0.1 * dx;
+    let gap = gap_fraction * dx;
     let left: Vec<Vector<1>> = lattice([n], dx)
         .iter()
         .map(|x| x - Vector::<1>::new(1.0 + 0.5 * gap))
@@ -92,11 +99,17 @@ fn bars_1d(n: usize, formulation: Formulation, scale: f64, end_time: f64) -> Mod
             body("right", 1, right, dx, Vector::<1>::new(-V)),
         ],
         boundaries: vec![],
-        effects: tlsph_solver::EffectsDescription {
-            contact: contact(scale),
-            ..Default::default()
-        },
+        effects,
     }
+}
+
+/// The bars of [`approaching_bars`] 0.1 dx apart in potential contact with the given scale.
+fn bars_1d(n: usize, formulation: Formulation, scale: f64, end_time: f64) -> Model<1> {
+    let effects = tlsph_solver::EffectsDescription {
+        contact: contact(scale),
+        ..Default::default()
+    };
+    approaching_bars(n, formulation, end_time, 0.1, effects)
 }
 
 /// Mean velocity of a body.

@@ -2,11 +2,11 @@
 //! stress and rebound of two bars, momentum to round-off, Coulomb's impulse ratio in a sliding
 //! impact, frictionless sliding, determinism, and the setup checks.
 
-use super::contact::{body, body_velocity, config, materials, V};
+use super::contact::{approaching_bars, body, body_velocity, config, materials, V};
 use super::lattice;
 use tlsph_math::Vector;
 use tlsph_solver::{
-    ContactDescription, EffectsDescription, Formulation, MaterialDescription, Model, ParticleField,
+    ContactDescription, EffectsDescription, Formulation, Model, ParticleField,
     PenaltyContactDescription, SetupError, Simulation,
 };
 
@@ -19,37 +19,14 @@ fn penalty(friction: f64) -> Option<PenaltyContactDescription> {
     })
 }
 
-/// Two identical 1D bars of n particles approaching at ±V, their end particles a distance
-/// `gap` further apart than one spacing (the penalty range R = Δx).
+/// Two identical 1D bars of n particles approaching at ±V in frictionless penalty contact,
+/// their end particles 0.02 dx further apart than one spacing (the penalty range R = Δx).
 fn bars_1d(n: usize, formulation: Formulation, end_time: f64) -> Model<1> {
-    let dx = 1.0 / n as f64;
-    let gap = 0.02 * dx;
-    let left: Vec<Vector<1>> = lattice([n], dx)
-        .iter()
-        .map(|x| x - Vector::<1>::new(1.0 + 0.5 * gap))
-        .collect();
-    let right: Vec<Vector<1>> = lattice([n], dx)
-        .iter()
-        .map(|x| x + Vector::<1>::new(0.5 * gap))
-        .collect();
-    let mut materials = materials();
-    materials[1] = MaterialDescription {
-        name: "unit-copy".into(),
-        ..materials[0].clone()
+    let effects = EffectsDescription {
+        penalty_contact: penalty(0.0),
+        ..Default::default()
     };
-    Model {
-        config: config(formulation, end_time),
-        materials,
-        bodies: vec![
-            body("left", 0, left, dx, Vector::<1>::new(V)),
-            body("right", 1, right, dx, Vector::<1>::new(-V)),
-        ],
-        boundaries: vec![],
-        effects: EffectsDescription {
-            penalty_contact: penalty(0.0),
-            ..Default::default()
-        },
-    }
+    approaching_bars(n, formulation, end_time, 0.02, effects)
 }
 
 #[test]

@@ -1,0 +1,241 @@
+//! Bookkeeping shared by the contact effects (numerics.md §12): which particles take part,
+//! their current positions, a Verlet list of candidate partners in the current configuration
+//! (rebuilt over a cell grid once a participant has moved half the skin), the deterministic
+//! chunked sum of a body's contact force, and the scatter of forces into accelerations.
+
+use crate::particles::Particles;
+use rayon::prelude::*;
+use tlsph_math::Vector;
+use tlsph_neighbours::CellGrid;
+
+/// Particles per parallel task.
+pub(super) const MIN_PER_TASK: usize = 256;
+
+/// Chunk length of the deterministic energy/force sums.
+const CHUNK: usize = 4096;
+
+/// Participants of a contact effect and their candidate partners (CSR, participant indices).
+#[derive(Debug, Clone)]
+pub(super) struct ContactCandidates<const D: usize> {
+    /// Global index of each participating particle (ascending).
+    participants: Vec<u32>,
+    /// Participant index of each real particle (`u32::MAX` if it takes no part).
+    local: Vec<u32>,
+    /// Body of each participant.
+    body: Vec<u32>,
+    /// Body whose contact force is reported as the resultant: the lowest-index participant's.
+    reported_body: u32,
+    /// Verlet skin \[m\]: a rebuild follows once a participant has moved half of it.
+    skin: f64,
+    /// Candidate search radius (interaction reach + skin) \[m\].
+    radius: f64,
+    /// Current positions of the participants.
+    positions: Vec<Vector<D>>,
+    positions_at_build: Vec<Vector<D>>,
+    offsets: Vec<usize>,
+    candidates: Vec<u32>,
+    rebuilds: u64,
+    /// Per-chunk (energy, force on the reported body).
+    chunk_sums: Vec<(f64, Vector<D>)>,
+}
+
+impl<const D: usize> ContactCandidates<D> {
+    /// Participants: the real particles whose body (`body_of`) satisfies `takes_part`;
+    /// candidates are searched within `reach + skin`.
+    pub(super) fn new(
+        body_of: &[u32],
+        takes_part: impl Fn(u32) -> bool,
+        reach: f64,
+        skin: f64,
+    ) -> Self {
+        let mut local = vec![u32::MAX; body_of.len()];
+        let mut participants = Vec::new();
+        let mut body = Vec::new();
+        for (i, &b) in body_of.iter().enumerate() {
+            if takes_part(b) {
+                local[i] = participants.len() as u32;
+                participants.push(i as u32);
+                body.push(b);
+            }
+        }
+        let n = participants.len();
+        Self {
+            reported_body: body.first().copied().unwrap_or(0),
+            participants,
+            local,
+            body,
+            skin,
+            radius: reach + skin,
+            positions: vec![Vector::zeros(); n],
+            positions_at_build: Vec::new(),
+            offsets: Vec::with_capacity(n + 1),
+            candidates: Vec::new(),
+            rebuilds: 0,
+            chunk_sums: Vec::with_capacity(n.div_ceil(CHUNK)),
+        }
+    }
+
+    /// Number of participants.
+    pub(super) fn len(&self) -> usize {
+        self.participants.len()
+    }
+
+    /// Global particle index of each participant.
+    pub(super) fn participants(&self) -> &[u32] {
+        &self.participants
+    }
+
+    /// Body of each participant.
+    pub(super) fn body(&self) -> &[u32] {
+        &self.body
+    }
+
+    /// Verlet skin \[m\].
+    pub(super) fn skin(&self) -> f64 {
+        self.skin
+    }
+
+    /// Current positions of the participants (as of the last [`Self::refresh`]).
+    pub(super) fn positions(&self) -> &[Vector<D>] {
+        &self.positions
+    }
+
+    /// Candidate partners (participant indices, ascending) of participant `k`.
+    #[inline]
+    pub(super) fn of(&self, k: usize) -> &[u32] {
+        &self.candidates[self.offsets[k]..self.offsets[k + 1]]
+    }
+
+    /// Candidate-list rebuilds so far.
+    pub(super) fn rebuilds(&self) -> u64 {
+        self.rebuilds
+    }
+
+    /// Reads the participants' positions x = X + u from `p` and rebuilds the candidate lists
+    /// if any participant has moved more than half the skin since the last build (a NaN
+    /// position counts as moved). `accepts(k, body_k, j, body_j)` decides whether participant
+    /// `j` within the search radius is a candidate of `k`.
+    pub(super) fn refresh(
+        &mut self,
+        p: &Particles<D>,
+        accepts: impl Fn(usize, u32, usize, u32) -> bool,
+    ) {
+        let parts = &self.participants;
+        self.positions
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(MIN_PER_TASK)
+            .for_each(|(k, x)| {
+                let i = parts[k] as usize;
+                *x = p.positions0[i] + p.displacements[i];
+            });
+        let half_skin_sq = 0.25 * self.skin * self.skin;
+        let stale = self.positions_at_build.len() != self.positions.len()
+            || self
+                .positions
+                .par_iter()
+                .zip(self.positions_at_build.par_iter())
+                .any(|(x, x_b)| {
+                    let moved = (x - x_b).norm_squared();
+                    moved.is_nan() || moved > half_skin_sq
+                });
+        if stale {
+            self.rebuild(accepts);
+        }
+    }
+
+    /// Every accepted participant within the search radius, ascending. Allocates only the
+    /// cell grid (and the lists if they grow). Non-finite positions give no candidates (the
+    /// step reports the non-finite state).
+    fn rebuild(&mut self, accepts: impl Fn(usize, u32, usize, u32) -> bool) {
+        self.offsets.clear();
+        self.candidates.clear();
+        self.offsets.push(0);
+        if let Ok(grid) = CellGrid::new(&self.positions, self.radius) {
+            let r2 = self.radius * self.radius;
+            for (k, x) in self.positions.iter().enumerate() {
+                let start = self.candidates.len();
+                let bk = self.body[k];
+                grid.for_each_candidate_with_position(x, |j, xj| {
+                    let bj = self.body[j as usize];
+                    if accepts(k, bk, j as usize, bj) && (xj - x).norm_squared() < r2 {
+                        self.candidates.push(j);
+                    }
+                });
+                self.candidates[start..].sort_unstable();
+                self.offsets.push(self.candidates.len());
+            }
+        } else {
+            self.offsets.resize(self.positions.len() + 1, 0);
+        }
+        self.positions_at_build.clone_from(&self.positions);
+        self.rebuilds += 1;
+    }
+
+    /// (Σ energy over all participants, Σ force over the reported body's participants), each
+    /// summed in fixed chunks so the result does not depend on the thread count. `energy` may
+    /// be empty (sum 0).
+    pub(super) fn totals(&mut self, energy: &[f64], force: &[Vector<D>]) -> (f64, Vector<D>) {
+        let (body, reported) = (&self.body, self.reported_body);
+        (0..force.len().div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let range = c * CHUNK..((c + 1) * CHUNK).min(force.len());
+                let mut f = Vector::<D>::zeros();
+                for k in range.clone() {
+                    if body[k] == reported {
+                        f += force[k];
+                    }
+                }
+                let e = energy.get(range).map_or(0.0, |e| e.iter().sum::<f64>());
+                (e, f)
+            })
+            .collect_into_vec(&mut self.chunk_sums);
+        self.chunk_sums
+            .iter()
+            .fold((0.0, Vector::<D>::zeros()), |(e, f), (ce, cf)| {
+                (e + ce, f + cf)
+            })
+    }
+
+    /// Writes a = f / m for every participant into `out` (indexed by real particle); other
+    /// entries are left as they are.
+    pub(super) fn scatter_accelerations(
+        &self,
+        force: &[Vector<D>],
+        masses: &[f64],
+        out: &mut [Vector<D>],
+    ) {
+        let local = &self.local;
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(|(i, a)| {
+                let k = local[i];
+                if k != u32::MAX {
+                    *a = force[k as usize] / masses[i];
+                }
+            });
+    }
+
+    /// Shortest stable step over the participants with positive stiffness:
+    /// min factor · sqrt(m_I / k_I), ties broken by the lower particle index.
+    pub(super) fn stiffness_time_step(
+        &self,
+        stiffness: &[f64],
+        masses: &[f64],
+        factor: f64,
+    ) -> Option<(f64, usize)> {
+        let parts = &self.participants;
+        stiffness
+            .par_iter()
+            .enumerate()
+            .with_min_len(MIN_PER_TASK)
+            .filter(|(_, k)| **k > 0.0)
+            .map(|(k, s)| {
+                let i = parts[k] as usize;
+                (factor * (masses[i] / s).sqrt(), i)
+            })
+            .reduce_with(crate::simulation::min_by_value_then_index)
+    }
+}
