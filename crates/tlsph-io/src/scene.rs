@@ -12,10 +12,10 @@ use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
-    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
-    EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model, ParticleField,
-    PenaltyContactDescription, PressureModel, RampShape, SimulationConfig, StressUpdate,
-    SymmetryPlane, VelocityRamp, WallDescription,
+    ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
+    ContactDescription, EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model,
+    ParticleField, PenaltyContactDescription, PressureModel, RampShape, SimulationConfig,
+    StressUpdate, SymmetryPlane, VelocityRamp, WallDescription,
 };
 use toml::Spanned;
 
@@ -237,6 +237,24 @@ impl Context<'_> {
                 format!("must be a finite number > 0, got {v}"),
             ))
         }
+    }
+
+    /// Indices of the bodies named in `names` (each must exist).
+    fn body_indices<const D: usize>(
+        &self,
+        names: &Spanned<Vec<String>>,
+        field: &str,
+        bodies: &[BodyDescription<D>],
+    ) -> Result<Vec<usize>, SceneError> {
+        names
+            .get_ref()
+            .iter()
+            .map(|name| {
+                bodies.iter().position(|b| &b.name == name).ok_or_else(|| {
+                    self.error(&names.span(), field, format!("no body named `{name}`"))
+                })
+            })
+            .collect()
     }
 
     fn vector<const D: usize>(
@@ -513,12 +531,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         });
     }
     for plane in &file.symmetry_plane {
-        let axis = match plane.axis.get_ref().as_str() {
-            "x" => 0,
-            "y" => 1,
-            "z" => 2,
-            _ => D,
-        };
+        let axis = axis_index(plane.axis.get_ref()).unwrap_or(D);
         if axis >= D {
             let axes = ["x", "y", "z"][..D].join(", ");
             return Err(ctx.error(
@@ -597,20 +610,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         };
         let carriers = match &a.bodies {
             None => None,
-            Some(names) => {
-                let mut indices = Vec::with_capacity(names.get_ref().len());
-                for name in names.get_ref() {
-                    let index = bodies.iter().position(|b| &b.name == name).ok_or_else(|| {
-                        ctx.error(
-                            &names.span(),
-                            "artificial_stress.bodies",
-                            format!("no body named `{name}`"),
-                        )
-                    })?;
-                    indices.push(index);
-                }
-                Some(indices)
-            }
+            Some(names) => Some(ctx.body_indices(names, "artificial_stress.bodies", &bodies)?),
         };
         effects.artificial_stress = Some(ArtificialStress {
             epsilon: or_default(&a.epsilon, "artificial_stress.epsilon", 0.3)?,
@@ -694,6 +694,40 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
         effects.hourglass_control =
             Some(ctx.positive(&h.coefficient, "hourglass_control.coefficient")?);
+    }
+    if let Some(f) = &file.body_force {
+        let acceleration = ctx.vector::<D>(&f.acceleration, "body_force.acceleration")?;
+        if let Some(plane) = file
+            .symmetry_plane
+            .iter()
+            .find(|p| axis_index(p.axis.get_ref()).is_some_and(|a| a < D && acceleration[a] != 0.0))
+        {
+            return Err(ctx.error(
+                &f.acceleration.span(),
+                "body_force.acceleration",
+                format!(
+                    "has a component along {}, the normal of a symmetry plane: the mirrored half would be pulled the other way, so the model is not symmetric",
+                    plane.axis.get_ref()
+                ),
+            ));
+        }
+        let selected = match &f.bodies {
+            None => None,
+            Some(names) => {
+                if names.get_ref().is_empty() {
+                    return Err(ctx.error(
+                        &names.span(),
+                        "body_force.bodies",
+                        "lists no body; omit `bodies` for every body".into(),
+                    ));
+                }
+                Some(ctx.body_indices(names, "body_force.bodies", &bodies)?)
+            }
+        };
+        effects.body_force = Some(BodyForceDescription {
+            acceleration,
+            bodies: selected,
+        });
     }
     if let Some(r) = &file.reference_update {
         let span = r.strain_threshold.span();
@@ -1504,6 +1538,11 @@ fn build_probe<const D: usize>(
 }
 
 /// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
+/// Index of a coordinate axis named "x", "y" or "z".
+fn axis_index(name: &str) -> Option<usize> {
+    ["x", "y", "z"].iter().position(|a| *a == name)
+}
+
 fn is_safe_file_stem(name: &str) -> bool {
     !name.is_empty()
         && !name.starts_with('.')

@@ -40,6 +40,16 @@ pub(crate) struct SceneFile {
     pub stability: Option<StabilityTable>,
     #[serde(default)]
     pub contact: Option<Spanned<ContactTable>>,
+    #[serde(default)]
+    pub body_force: Option<BodyForceTable>,
+}
+
+/// `[body_force]`: a uniform acceleration (gravity) on every body or on the named ones.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BodyForceTable {
+    pub acceleration: Spanned<Vec<f64>>,
+    pub bodies: Option<Spanned<Vec<String>>>,
 }
 
 /// `[contact]`: particle-to-particle contact between bodies, potential-type (numerics.md §12.2,

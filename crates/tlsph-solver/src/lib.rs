@@ -31,11 +31,11 @@ pub use effects::{CONTACT_SKIN_FRACTION, SURFACE_FRACTION};
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{
-    ArtificialStress, BodyDescription, BoundaryDescription, BulkViscosity, ContactDescription,
-    DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
-    MaterialDescription, MaterialModel, Model, PenaltyContactDescription, PressureModel, RampShape,
-    ReferenceUpdate, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal,
-    VelocityRamp, WallDescription,
+    ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
+    ContactDescription, DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic,
+    FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
+    PenaltyContactDescription, PressureModel, RampShape, ReferenceUpdate, SimulationConfig,
+    StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp, WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -387,6 +387,20 @@ pub struct EffectsDescription<const D: usize> {
     /// §4 `[C]`): when a particle's strain since the last reference configuration exceeds the
     /// threshold, the current configuration becomes the new reference.
     pub reference_update: Option<ReferenceUpdate>,
+    /// A uniform body force per unit mass (gravity, a steady acceleration of the frame).
+    pub body_force: Option<BodyForceDescription<D>>,
+}
+
+/// A uniform body force per unit mass b (numerics.md §4.5 and §3, R 4.11:
+/// ρ0 ü = ∇·P + ρ0 b; added with the accelerations of §5 step 6):
+/// gravity, or the inertial load of a steadily accelerating frame. Its work is booked in the
+/// `body_force` energy column (the potential energy gained), so total energy closes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyForceDescription<const D: usize> {
+    /// Acceleration b \[m/s²\] (e.g. (0, −9.81) for gravity along −y).
+    pub acceleration: Vector<D>,
+    /// Bodies (indices into `Model::bodies`) that feel it; `None` = every body.
+    pub bodies: Option<Vec<usize>>,
 }
 
 /// When to replace the reference configuration by the current one (TLSPH at large strain).

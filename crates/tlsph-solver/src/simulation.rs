@@ -5,8 +5,9 @@ use crate::bonds::{build_bonds, BodyBonds, Bonds, CorrectionReport};
 use crate::damage::{update_damaged_elastic, DamageState};
 use crate::diagnostics::Diagnostics;
 use crate::effects::{
-    BookedEffect, Configuration, EffectContext, HourglassControl, MonaghanArtificialStress,
-    MonaghanViscosity, PairLaw, ParticleContact, PenaltyContact, PenaltyPairLaw, RigidWall,
+    BodyForce, BookedEffect, Configuration, EffectContext, HourglassControl,
+    MonaghanArtificialStress, MonaghanViscosity, PairLaw, ParticleContact, PenaltyContact,
+    PenaltyPairLaw, RigidWall,
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
@@ -382,7 +383,15 @@ impl<const D: usize> Simulation<D> {
                 ))
             }
         };
-        let effects = build_effects(&model, &bodies, &kernels, &particles, &bonds, n_real)?;
+        let effects = build_effects(
+            &model,
+            &bodies,
+            &kernels,
+            &particles,
+            &bonds,
+            &prescribed,
+            n_real,
+        )?;
         let updated = updated_lagrangian.then(|| {
             let body = body_indices(&bodies, n_real);
             let group = body
@@ -1676,6 +1685,7 @@ fn build_effects<const D: usize>(
     kernels: &[tlsph_kernels::AnyKernel],
     particles: &Particles<D>,
     bonds: &Bonds<D>,
+    prescribed: &[PrescribedSet<D>],
     n_real: usize,
 ) -> Result<Vec<BookedEffect<D>>, SetupError> {
     let mut effects: Vec<BookedEffect<D>> = Vec::new();
@@ -1684,6 +1694,18 @@ fn build_effects<const D: usize>(
     let per_particle = |f: &dyn Fn(&BodyInfo) -> f64| -> Vec<f64> {
         (0..n).map(|i| f(&bodies[body_of(i)])).collect()
     };
+    if let Some(body_force) = &model.effects.body_force {
+        effects.push(BookedEffect {
+            effect: Box::new(build_body_force(
+                model,
+                body_force,
+                bodies,
+                prescribed,
+                &particles.positions0[..n],
+            )?),
+            energy: 0.0,
+        });
+    }
     for wall in &model.effects.walls {
         if !(wall.normal.norm() > 0.0
             && wall
@@ -1836,6 +1858,58 @@ fn build_effects<const D: usize>(
         });
     }
     Ok(effects)
+}
+
+/// The body force of numerics.md §4.5 on the declared bodies (or every body), checked: a
+/// finite acceleration, existing bodies, and no component along a symmetry plane's normal
+/// (the mirrored half would be pulled the other way, so the model would not be symmetric).
+fn build_body_force<const D: usize>(
+    model: &Model<D>,
+    body_force: &crate::model::BodyForceDescription<D>,
+    bodies: &[BodyInfo],
+    prescribed: &[PrescribedSet<D>],
+    positions0: &[Vector<D>],
+) -> Result<BodyForce<D>, SetupError> {
+    let b = body_force.acceleration;
+    if !b.iter().all(|x| x.is_finite()) {
+        return Err(SetupError::InvalidConfig {
+            field: "body_force.acceleration",
+            message: format!("must be finite, got {:?}", b.as_slice()),
+        });
+    }
+    if let Some(plane) = model
+        .effects
+        .symmetry_planes
+        .iter()
+        .find(|plane| plane.axis < D && b[plane.axis] != 0.0)
+    {
+        return Err(SetupError::InvalidConfig {
+            field: "body_force.acceleration",
+            message: format!(
+                "has a component {} along axis {}, the normal of the symmetry plane at {}: \
+                 the mirrored half would be pulled the other way, so the model is not symmetric",
+                b[plane.axis], plane.axis, plane.position
+            ),
+        });
+    }
+    let ranges = match &body_force.bodies {
+        None => bodies.iter().map(|info| info.range.clone()).collect(),
+        Some(list) => list
+            .iter()
+            .map(|&k| {
+                bodies.get(k).map(|info| info.range.clone()).ok_or_else(|| {
+                    SetupError::InvalidConfig {
+                        field: "body_force.bodies",
+                        message: format!("body #{k} does not exist ({} bodies)", bodies.len()),
+                    }
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?,
+    };
+    let held = prescribed
+        .iter()
+        .flat_map(|set| set.particles.iter().map(|&i| (i, set.components)));
+    Ok(BodyForce::new(b, ranges, held, positions0.to_vec()))
 }
 
 /// The particle contact of numerics.md §12.2 for the declared body pairs (or every pair of

@@ -1,8 +1,7 @@
 //! `[contact]` (numerics.md §12.2): parsed into the model, bad values named with field and
 //! line, and a run books a `contact` energy column.
 
-use super::{error_of, line_of};
-use std::fs;
+use super::{energy_rows, error_of, line_of};
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 
 const TWO_BARS: &str = r#"
@@ -141,7 +140,7 @@ fn a_contact_run_books_its_energy_column_and_closes() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
-    let (rows, contact, total) = energy_rows(&dir);
+    let (rows, contact, total) = energy_rows(&dir, "contact");
     assert!(
         rows.iter().any(|r| r[contact] > 0.0),
         "contact stored energy"
@@ -152,19 +151,6 @@ fn a_contact_run_books_its_energy_column_and_closes() {
     for r in &rows {
         assert!((r[total] - e0).abs() < 1.5e-2 * e0, "{r:?}");
     }
-}
-
-/// Rows of a run's `energy.csv` with the indices of its contact and total columns.
-fn energy_rows(dir: &std::path::Path) -> (Vec<Vec<f64>>, usize, usize) {
-    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
-    let mut lines = energy.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let contact = header.iter().position(|h| h.contains("contact")).unwrap();
-    let total = header.iter().position(|h| h.contains("total")).unwrap();
-    let rows = lines
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
-    (rows, contact, total)
 }
 
 /// `TWO_BARS` with Fuller's penalty law instead of the potential one.
@@ -246,7 +232,7 @@ fn a_penalty_contact_run_books_its_work_and_closes() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
-    let (rows, contact, total) = energy_rows(&dir);
+    let (rows, contact, total) = energy_rows(&dir, "contact");
     let e0 = rows[0][total];
     assert!(rows.iter().any(|r| r[contact] > 1e-2 * e0), "contact work");
     for r in &rows {

@@ -3,6 +3,7 @@
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 
+mod body_force;
 mod contact;
 mod cuts;
 mod damage;
@@ -52,6 +53,19 @@ dir = "out"
 
 fn error_of(text: &str) -> tlsph_io::SceneError {
     parse_scene(text, "scene.toml").expect_err("scene must be rejected")
+}
+
+/// Rows of a run's `energy.csv` with the indices of the column `name` and of `total`.
+fn energy_rows(dir: &std::path::Path, name: &str) -> (Vec<Vec<f64>>, usize, usize) {
+    let energy = fs::read_to_string(dir.join("energy.csv")).unwrap();
+    let mut lines = energy.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|h| *h == name).unwrap();
+    let total = header.iter().position(|h| *h == "total").unwrap();
+    let rows = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (rows, column, total)
 }
 
 fn line_of(text: &str, needle: &str) -> usize {

@@ -4,6 +4,7 @@
 //! not declare is not in the list: it allocates nothing and costs nothing.
 
 mod artificial_stress;
+mod body_force;
 mod contact_candidates;
 mod hourglass;
 mod monaghan_viscosity;
@@ -12,6 +13,7 @@ mod penalty_contact;
 mod rigid_wall;
 
 pub use artificial_stress::MonaghanArtificialStress;
+pub use body_force::BodyForce;
 pub use hourglass::HourglassControl;
 pub use monaghan_viscosity::MonaghanViscosity;
 pub(crate) use particle_contact::PairLaw;

@@ -2,6 +2,7 @@
 //! and failure reporting.
 
 mod allocation;
+mod body_force;
 mod contact;
 mod damage;
 mod effects;
