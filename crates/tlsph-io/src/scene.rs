@@ -524,10 +524,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 "must not be zero".into(),
             ));
         }
+        let friction = match &w.friction {
+            Some(mu) => ctx.non_negative(mu, &format!("wall[{name}].friction"))?,
+            None => 0.0,
+        };
         effects.walls.push(WallDescription {
             name,
             point,
             normal,
+            friction,
         });
     }
     for plane in &file.symmetry_plane {
@@ -724,9 +729,13 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 Some(ctx.body_indices(names, "body_force.bodies", &bodies)?)
             }
         };
+        let ramp = parse_ramp(ctx, &f.ramp_time, &f.ramp_shape, &|key: &str| {
+            format!("body_force.{key}")
+        })?;
         effects.body_force = Some(BodyForceDescription {
             acceleration,
             bodies: selected,
+            ramp,
         });
     }
     if let Some(r) = &file.reference_update {
@@ -1337,6 +1346,43 @@ fn shape_of<const D: usize>(
     ))
 }
 
+/// `ramp_time` / `ramp_shape` of a boundary or the body force: a [`VelocityRamp`] (smooth
+/// unless `"linear"`), or `None` without `ramp_time`; `field` names a key of the table.
+fn parse_ramp(
+    ctx: &Context<'_>,
+    time: &Option<Spanned<f64>>,
+    shape: &Option<Spanned<String>>,
+    field: &dyn Fn(&str) -> String,
+) -> Result<Option<VelocityRamp>, SceneError> {
+    let time = match (time, shape) {
+        (None, None) => return Ok(None),
+        (None, Some(shape)) => {
+            return Err(ctx.error(
+                &shape.span(),
+                &field("ramp_shape"),
+                "needs `ramp_time` (the duration of the ramp)".into(),
+            ))
+        }
+        (Some(time), _) => time,
+    };
+    let duration = ctx.positive(time, &field("ramp_time"))?;
+    let shape = match shape {
+        None => RampShape::Smooth,
+        Some(s) => match s.get_ref().as_str() {
+            "smooth" => RampShape::Smooth,
+            "linear" => RampShape::Linear,
+            other => {
+                return Err(ctx.error(
+                    &s.span(),
+                    &field("ramp_shape"),
+                    format!("unknown ramp shape `{other}` (expected \"smooth\" or \"linear\")"),
+                ))
+            }
+        },
+    };
+    Ok(Some(VelocityRamp { duration, shape }))
+}
+
 fn build_boundary<const D: usize>(
     ctx: &Context<'_>,
     t: &BoundaryTable,
@@ -1431,43 +1477,14 @@ fn build_boundary<const D: usize>(
             components[k] = true;
         }
     }
-    let ramp = match (&t.ramp_time, &t.ramp_shape) {
-        (None, None) => None,
-        (None, Some(shape)) => {
-            return Err(ctx.error(
-                &shape.span(),
-                &field("ramp_shape"),
-                "needs `ramp_time` (the duration of the ramp)".into(),
-            ))
-        }
-        (Some(time), _) if fixed => {
-            return Err(ctx.error(
-                &time.span(),
-                &field("ramp_time"),
-                "a fixed boundary has nothing to ramp; give a `velocity` or drop the key".into(),
-            ))
-        }
-        (Some(time), shape) => {
-            let duration = ctx.positive(time, &field("ramp_time"))?;
-            let shape = match shape {
-                None => RampShape::Smooth,
-                Some(s) => match s.get_ref().as_str() {
-                    "smooth" => RampShape::Smooth,
-                    "linear" => RampShape::Linear,
-                    other => {
-                        return Err(ctx.error(
-                            &s.span(),
-                            &field("ramp_shape"),
-                            format!(
-                                "unknown ramp shape `{other}` (expected \"smooth\" or \"linear\")"
-                            ),
-                        ))
-                    }
-                },
-            };
-            Some(VelocityRamp { duration, shape })
-        }
-    };
+    if let (Some(time), true) = (&t.ramp_time, fixed) {
+        return Err(ctx.error(
+            &time.span(),
+            &field("ramp_time"),
+            "a fixed boundary has nothing to ramp; give a `velocity` or drop the key".into(),
+        ));
+    }
+    let ramp = parse_ramp(ctx, &t.ramp_time, &t.ramp_shape, &field)?;
     Ok(BoundaryDescription {
         name,
         body: body_index,

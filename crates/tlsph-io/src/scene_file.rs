@@ -50,6 +50,8 @@ pub(crate) struct SceneFile {
 pub(crate) struct BodyForceTable {
     pub acceleration: Spanned<Vec<f64>>,
     pub bodies: Option<Spanned<Vec<String>>>,
+    pub ramp_time: Option<Spanned<f64>>,
+    pub ramp_shape: Option<Spanned<String>>,
 }
 
 /// `[contact]`: particle-to-particle contact between bodies, potential-type (numerics.md §12.2,
@@ -117,13 +119,14 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid frictionless plane.
+/// `[[wall]]`: a rigid fixed plane, frictionless unless `friction` is given.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
     pub name: Spanned<String>,
     pub point: Spanned<Vec<f64>>,
     pub normal: Spanned<Vec<f64>>,
+    pub friction: Option<Spanned<f64>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

@@ -320,9 +320,22 @@ impl VelocityRamp {
             RampShape::Smooth => 0.5 * (1.0 - (std::f64::consts::PI * s).cos()),
         }
     }
+    /// Rate d r(t/T)/dt of the factor at time `t` \[1/s\] (0 outside the ramp).
+    pub fn rate(&self, t: f64) -> f64 {
+        let s = t / self.duration;
+        if !(0.0..1.0).contains(&s) {
+            return 0.0;
+        }
+        match self.shape {
+            RampShape::Linear => 1.0 / self.duration,
+            RampShape::Smooth => {
+                0.5 * std::f64::consts::PI / self.duration * (std::f64::consts::PI * s).sin()
+            }
+        }
+    }
 }
 
-/// A rigid frictionless plane (numerics.md §13; an anvil).
+/// A rigid fixed plane (numerics.md §13; an anvil), frictionless or with Coulomb friction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WallDescription<const D: usize> {
     /// Name (its reaction is reported as `wall_<name>`).
@@ -331,6 +344,8 @@ pub struct WallDescription<const D: usize> {
     pub point: Vector<D>,
     /// Normal pointing into the half-space where the particles are (need not be unit).
     pub normal: Vector<D>,
+    /// Coulomb friction coefficient μ ≥ 0 (0: frictionless, no friction effect is built).
+    pub friction: f64,
 }
 
 /// A symmetry plane x_axis = position, modelled by mirror (ghost) particles
@@ -357,7 +372,7 @@ pub struct BulkViscosity {
 /// Optional effects of a run; absent effects cost nothing.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct EffectsDescription<const D: usize> {
-    /// Rigid frictionless walls acting on every body.
+    /// Rigid walls acting on every body.
     pub walls: Vec<WallDescription<D>>,
     /// Ganzenmüller hourglass control coefficient α (numerics.md §10.5).
     pub hourglass_control: Option<f64>,
@@ -394,13 +409,17 @@ pub struct EffectsDescription<const D: usize> {
 /// A uniform body force per unit mass b (numerics.md §4.5 and §3, R 4.11:
 /// ρ0 ü = ∇·P + ρ0 b; added with the accelerations of §5 step 6):
 /// gravity, or the inertial load of a steadily accelerating frame. Its work is booked in the
-/// `body_force` energy column (the potential energy gained), so total energy closes.
+/// `body_force` energy column (the potential energy gained; with a ramp, the time-centred
+/// work integral), so total energy closes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyForceDescription<const D: usize> {
     /// Acceleration b \[m/s²\] (e.g. (0, −9.81) for gravity along −y).
     pub acceleration: Vector<D>,
     /// Bodies (indices into `Model::bodies`) that feel it; `None` = every body.
     pub bodies: Option<Vec<usize>>,
+    /// Start-up b(t) = r(t/T) b (the shapes of [`VelocityRamp`]), e.g. to load a body by its
+    /// weight without the dynamic overshoot of a sudden load; `None`: the full b from t = 0.
+    pub ramp: Option<VelocityRamp>,
 }
 
 /// When to replace the reference configuration by the current one (TLSPH at large strain).

@@ -926,6 +926,7 @@ impl<const D: usize> Simulation<D> {
                 bonds: &self.bonds,
                 pairs: self.updated.as_ref().map(|u| &u.pairs),
                 kick,
+                time: self.time,
             };
             booked.effect.accelerations(&ctx, &mut self.effect_scratch);
             let p = &mut self.particles;
@@ -1725,17 +1726,28 @@ fn build_effects<const D: usize>(
         let h = per_particle(&|b| b.smoothing_length);
         let c0 = per_particle(&|b| b.sound_speed0);
         let dx = per_particle(&|b| b.spacing);
+        if !(wall.friction.is_finite() && wall.friction >= 0.0) {
+            return Err(SetupError::InvalidConfig {
+                field: "wall",
+                message: format!(
+                    "wall `{}`: the friction coefficient must be finite and ≥ 0, got {}",
+                    wall.name, wall.friction
+                ),
+            });
+        }
+        let rigid = RigidWall::new(&wall.name, wall.point, wall.normal, &h, &c0, &dx);
+        // Friction right after its wall: it sees this step's normal kick.
+        let friction = (wall.friction > 0.0).then(|| rigid.friction(wall.friction));
         effects.push(BookedEffect {
-            effect: Box::new(RigidWall::new(
-                &wall.name,
-                wall.point,
-                wall.normal,
-                &h,
-                &c0,
-                &dx,
-            )),
+            effect: Box::new(rigid),
             energy: 0.0,
         });
+        if let Some(friction) = friction {
+            effects.push(BookedEffect {
+                effect: Box::new(friction),
+                energy: 0.0,
+            });
+        }
     }
     if let Some((alpha, beta)) = model.effects.pairwise_viscosity {
         if !(alpha.is_finite() && beta.is_finite() && alpha >= 0.0 && beta >= 0.0) {
@@ -1906,10 +1918,27 @@ fn build_body_force<const D: usize>(
             })
             .collect::<Result<Vec<_>, _>>()?,
     };
+    if let Some(ramp) = body_force.ramp {
+        if !(ramp.duration.is_finite() && ramp.duration > 0.0) {
+            return Err(SetupError::InvalidConfig {
+                field: "body_force.ramp_time",
+                message: format!(
+                    "ramp duration must be finite and > 0 (got {})",
+                    ramp.duration
+                ),
+            });
+        }
+    }
     let held = prescribed
         .iter()
         .flat_map(|set| set.particles.iter().map(|&i| (i, set.components)));
-    Ok(BodyForce::new(b, ranges, held, positions0.to_vec()))
+    Ok(BodyForce::new(
+        b,
+        ranges,
+        held,
+        positions0.to_vec(),
+        body_force.ramp,
+    ))
 }
 
 /// The particle contact of numerics.md §12.2 for the declared body pairs (or every pair of

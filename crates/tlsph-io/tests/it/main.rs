@@ -9,6 +9,7 @@ mod cuts;
 mod damage;
 mod kernel_groups;
 mod materials;
+mod wall_friction;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).
 const PLATE_IMPACT: &str = r#"

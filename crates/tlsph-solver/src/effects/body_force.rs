@@ -5,8 +5,15 @@
 //! −Σ m b·(x − x_start) over the free components, evaluated at the same instant as the
 //! kinetic energy (for a free fall leap-frog then closes the total to round-off, where a work
 //! integral of the staggered velocities would leave an O(Δt) boundary term).
+//!
+//!
+//! With a ramp b(t) = r(t/T) b the column is the work of the time-dependent force in the same
+//! form: E = −r(t) Π(t) + ∫₀ᵗ r'(s) Π(s) ds, Π = Σ m b·(x − x_start), whose rate is −Σ m b(t)·v.
+//! The integral is accumulated by the trapezoidal rule over the evaluation times and is
+//! constant once the ramp is complete, so from then on the column is exact again.
 
 use super::{Effect, EffectContext};
+use crate::model::VelocityRamp;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_math::Vector;
@@ -28,8 +35,20 @@ pub struct BodyForce<const D: usize> {
     start: Vec<Vector<D>>,
     /// Potential energy gained −Σ m b·(x − x_start) at the last evaluation \[J\].
     potential: f64,
+    /// Start-up of b, while it is still to be completed.
+    ramp: Option<RampState>,
     /// Per-chunk partial sums (reused every step).
     chunk_sums: Vec<f64>,
+}
+
+/// The start-up of a ramped body force and the integral ∫ r' Π dt accumulated over it.
+#[derive(Debug, Clone, Copy)]
+struct RampState {
+    ramp: VelocityRamp,
+    /// ∫₀ᵗ r'(s) Π(s) ds up to the last evaluation \[J\].
+    integral: f64,
+    /// Time and r'(t) Π(t) of the last evaluation (trapezoidal rule).
+    last: Option<(f64, f64)>,
 }
 
 impl<const D: usize> BodyForce<D> {
@@ -41,6 +60,7 @@ impl<const D: usize> BodyForce<D> {
         mut ranges: Vec<Range<usize>>,
         held: impl IntoIterator<Item = (usize, [bool; D])>,
         start: Vec<Vector<D>>,
+        ramp: Option<VelocityRamp>,
     ) -> Self {
         ranges.sort_by_key(|r| r.start);
         ranges.dedup();
@@ -62,6 +82,11 @@ impl<const D: usize> BodyForce<D> {
             held: merged,
             start,
             potential: 0.0,
+            ramp: ramp.map(|ramp| RampState {
+                ramp,
+                integral: 0.0,
+                last: None,
+            }),
             chunk_sums: Vec::new(),
         }
     }
@@ -77,6 +102,7 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
+        let factor = self.ramp.map_or(1.0, |r| r.ramp.factor(ctx.time));
         let b = self.acceleration;
         let p = ctx.particles;
         let start = &self.start;
@@ -88,7 +114,7 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
             out[range.clone()]
                 .par_iter_mut()
                 .with_min_len(CHUNK)
-                .for_each(|a| *a = b);
+                .for_each(|a| *a = b * factor);
             // Fixed chunks of the range: the same sum for any thread count.
             let chunks = range.len().div_ceil(CHUNK);
             self.chunk_sums
@@ -99,6 +125,7 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
                         .sum::<f64>()
                 }));
         }
+        // Π = Σ m b·(x − x_start) over the free components, with the full b.
         let mut work: f64 = self.chunk_sums.iter().sum();
         for &(i, components) in &self.held {
             let moved = (p.positions0[i] - start[i]) + p.displacements[i];
@@ -109,7 +136,17 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
                 }
             }
         }
-        self.potential = -work;
+        self.potential = match &mut self.ramp {
+            None => -work,
+            Some(state) => {
+                let (t, rate) = (ctx.time, state.ramp.rate(ctx.time) * work);
+                if let Some((t0, rate0)) = state.last {
+                    state.integral += 0.5 * (rate0 + rate) * (t - t0);
+                }
+                state.last = Some((t, rate));
+                -factor * work + state.integral
+            }
+        };
     }
 
     fn stored_energy(&self) -> Option<f64> {

@@ -36,6 +36,8 @@ pub(crate) struct EffectContext<'a, const D: usize> {
     pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
     /// This step's kick ½(Δt^n + Δt^{n+1}): velocities hold v^{n−½} + kick·a (internal forces).
     pub kick: f64,
+    /// Time t^n of the configuration \[s\].
+    pub time: f64,
 }
 
 /// Read-only view of the configuration at t^n on which effects vote for the time step

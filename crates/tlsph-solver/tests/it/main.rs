@@ -12,6 +12,7 @@ mod plasticity;
 mod reference_update;
 mod symmetry;
 mod updated_lagrangian;
+mod wall_friction;
 
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;
