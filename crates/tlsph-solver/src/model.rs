@@ -320,6 +320,18 @@ impl VelocityRamp {
             RampShape::Smooth => 0.5 * (1.0 - (std::f64::consts::PI * s).cos()),
         }
     }
+    /// Checks the duration (finite, > 0); the error message says what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.duration.is_finite() && self.duration > 0.0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "ramp duration must be finite and > 0 (got {})",
+                self.duration
+            ))
+        }
+    }
+
     /// Rate d r(t/T)/dt of the factor at time `t` \[1/s\] (0 outside the ramp).
     pub fn rate(&self, t: f64) -> f64 {
         let s = t / self.duration;

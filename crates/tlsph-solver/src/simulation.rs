@@ -242,15 +242,11 @@ impl<const D: usize> Simulation<D> {
                     });
                 }
                 if let Some(ramp) = b.ramp {
-                    if !(ramp.duration.is_finite() && ramp.duration > 0.0) {
-                        return Err(SetupError::InvalidBoundary {
+                    ramp.validate()
+                        .map_err(|message| SetupError::InvalidBoundary {
                             boundary: b.name.clone(),
-                            message: format!(
-                                "ramp duration must be finite and > 0 (got {})",
-                                ramp.duration
-                            ),
-                        });
-                    }
+                            message,
+                        })?;
                 }
                 Ok(PrescribedSet {
                     particles: b.particles.iter().map(|i| info.range.start + i).collect(),
@@ -1919,15 +1915,11 @@ fn build_body_force<const D: usize>(
             .collect::<Result<Vec<_>, _>>()?,
     };
     if let Some(ramp) = body_force.ramp {
-        if !(ramp.duration.is_finite() && ramp.duration > 0.0) {
-            return Err(SetupError::InvalidConfig {
+        ramp.validate()
+            .map_err(|message| SetupError::InvalidConfig {
                 field: "body_force.ramp_time",
-                message: format!(
-                    "ramp duration must be finite and > 0 (got {})",
-                    ramp.duration
-                ),
-            });
-        }
+                message,
+            })?;
     }
     let held = prescribed
         .iter()

@@ -113,23 +113,20 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
         let p = ctx.particles;
         let wall = &*self.geometry;
         let position = |i: usize| p.positions0[i] + p.displacements[i];
-        out.par_iter_mut()
+        // One pass: the acceleration k δ n̂ and the stored energy Σ ½ m k δ², summed in fixed
+        // chunks (thread-count independent).
+        out.par_chunks_mut(CHUNK)
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .for_each(|(i, a)| {
-                *a = wall.normal * wall.normal_acceleration(i, position(i));
-            });
-        // Stored energy Σ ½ m k δ², summed in fixed chunks (thread-count independent).
-        let n = out.len();
-        (0..n.div_ceil(CHUNK))
-            .into_par_iter()
-            .map(|c| {
-                (c * CHUNK..((c + 1) * CHUNK).min(n))
-                    .map(|i| {
-                        let delta = wall.penetration(i, position(i));
-                        0.5 * p.masses[i] * wall.stiffness_per_mass[i] * delta * delta
-                    })
-                    .sum::<f64>()
+            .map(|(c, chunk)| {
+                let mut stored = 0.0;
+                for (k, a) in chunk.iter_mut().enumerate() {
+                    let i = c * CHUNK + k;
+                    let delta = wall.penetration(i, position(i));
+                    let a_n = wall.stiffness_per_mass[i] * delta;
+                    *a = wall.normal * a_n;
+                    stored += 0.5 * p.masses[i] * a_n * delta;
+                }
+                stored
             })
             .collect_into_vec(&mut self.chunk_sums);
         self.stored = self.chunk_sums.iter().sum();
