@@ -546,15 +546,7 @@ impl<const D: usize> Simulation<D> {
         self.apply_effects(kick);
         // Prescribed components: zero their acceleration; their kicked velocity is overwritten
         // by `impose_velocities`, so kicking before zeroing changes nothing.
-        for set in &self.prescribed {
-            for &i in &set.particles {
-                for (c, imposed) in set.components.iter().enumerate() {
-                    if *imposed {
-                        self.particles.accelerations[i][c] = 0.0;
-                    }
-                }
-            }
-        }
+        zero_prescribed(&self.prescribed, &mut self.particles.accelerations);
         // The kicked velocity is v^{n+½} of the coming drift, centred at t^n + ½Δt^{n+1}.
         let velocity_time = self.time + 0.5 * next_dt;
         self.impose_velocities(velocity_time);
@@ -925,6 +917,11 @@ impl<const D: usize> Simulation<D> {
                 time: self.time,
             };
             booked.effect.accelerations(&ctx, &mut self.effect_scratch);
+            // A prescribed component moves as imposed whatever acts on it: the effect's force
+            // there is taken by the driver, does no work on the particles and is no part of
+            // the resultant (a fixed body pressed by a contact would otherwise book the
+            // m|a|²Δt² its discarded kick implies, every step).
+            zero_prescribed(&self.prescribed, &mut self.effect_scratch);
             let p = &mut self.particles;
             let masses = &p.masses;
             p.accelerations
@@ -1647,6 +1644,20 @@ fn impose_on<const D: usize>(
             for (c, imposed) in set.components.iter().enumerate() {
                 if *imposed {
                     velocities[i][c] = velocity[c];
+                }
+            }
+        }
+    }
+}
+
+/// Zeroes the prescribed components of a per-particle field (accelerations, or an effect's
+/// share of them).
+fn zero_prescribed<const D: usize>(prescribed: &[PrescribedSet<D>], field: &mut [Vector<D>]) {
+    for set in prescribed {
+        for &i in &set.particles {
+            for (c, imposed) in set.components.iter().enumerate() {
+                if *imposed {
+                    field[i][c] = 0.0;
                 }
             }
         }
