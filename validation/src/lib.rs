@@ -102,6 +102,12 @@ pub fn problems() -> Vec<Problem> {
             run: problems::f_a5::run,
         },
         Problem {
+            id: problems::f_a6::ID,
+            title:
+                "Fuller: elastic ball bouncing off a fixed wall with penalty contact vs the kernel",
+            run: problems::f_a6::run,
+        },
+        Problem {
             id: "R-C3",
             title: "linear stability of TLSPH vs Eulerian SPH lattices (Reveles ch. 3)",
             run: stability::run,

@@ -25,6 +25,7 @@
 //! - R-P6 (quick tier, 2D plane strain at 0.74 mm) final length and foot width to 0.1 mm
 //!   (0.3 % of the 3 cm length, a twentieth of the ±2 mm band), the outline's half-width to
 //!   0.01 mm, the tip height every 10 µs to 0.01 mm and the largest plastic strain to 0.01;
+//! - F-A6 ball velocity to 1e-3 of U and closest ball-wall distance to 0.01 R_contact;
 //! - R-C7X (quick tier) gauge stress every 0.25 µs to 0.01 GPa (0.2 % of the 4.375 GPa
 //!   plateau), the plateau to 0.01 GPa, the overshoot to 1e-3 and the rise time to 1 ns.
 
@@ -395,6 +396,36 @@ fn f_a5_tl_mode_rings() {
         round(run.min_ratio.0.min(run.min_ratio.1), 0.01),
         run.momentum_error < 1e-12
     );
+    insta::assert_snapshot!(csv);
+}
+
+#[test]
+fn f_a6_ball_bounce_with_penalty_contact() {
+    // Centre-of-mass V_x/U every 20 τ and the restitution to 1e-3 of U (as F-A2), the closest
+    // ball-wall distance to 0.01 R_contact (the pass bound is 0.5).
+    use tlsph_validation::problems::f_a6;
+    let mut csv = String::from("case,time,v_over_u\n");
+    for case in f_a6::CASES {
+        let run = f_a6::simulate(case);
+        let label = case.label();
+        for k in 0..=20 {
+            let t = 20.0 * k as f64;
+            let v = sample_series(&run.times, &run.velocity, t);
+            writeln!(csv, "{label},{t:.0},{:.3}", round(v, 1e-3)).unwrap();
+        }
+        writeln!(
+            csv,
+            "{label},restitution,{:.3}",
+            round(run.restitution, 1e-3)
+        )
+        .unwrap();
+        writeln!(
+            csv,
+            "{label},min_gap_over_range,{:.2}",
+            round(run.min_gap_over_range, 0.01)
+        )
+        .unwrap();
+    }
     insta::assert_snapshot!(csv);
 }
 

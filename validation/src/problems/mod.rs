@@ -7,6 +7,7 @@ pub mod f_a2;
 pub mod f_a3;
 pub mod f_a4;
 pub mod f_a5;
+pub mod f_a6;
 pub mod fuller;
 pub mod fuller_scenes;
 pub mod r_c7x;
