@@ -140,8 +140,9 @@ pub struct Simulation<const D: usize> {
     reference: Option<ReferenceState<D>>,
     /// Declared effects with their booked energies (empty when none is declared).
     effects: Vec<BookedEffect<D>>,
-    /// Accelerations of one effect (allocated only when effects are declared).
-    effect_scratch: Vec<Vector<D>>,
+    /// Each declared effect's share of the accelerations of the current step (one array per
+    /// declared effect; none without effects).
+    effect_shares: Vec<Vec<Vector<D>>>,
     /// Per-chunk partial sums for deterministic reductions (allocated with the effects).
     chunk_sums: Vec<(f64, Vector<D>)>,
     correction: CorrectionReport,
@@ -403,7 +404,7 @@ impl<const D: usize> Simulation<D> {
         });
         let n_effect = if effects.is_empty() { 0 } else { n_real };
         let mut sim = Self {
-            effect_scratch: vec![Vector::zeros(); n_effect],
+            effect_shares: vec![vec![Vector::zeros(); n_real]; effects.len()],
             chunk_sums: Vec::with_capacity(n_effect.div_ceil(CHUNK)),
             effects,
             ghosts,
@@ -904,11 +905,15 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Adds every declared effect's accelerations at t^n, kicks with them, and books their
-    /// work −Σ m a·v^n Δt* (v^n = v^{n+½} − ½Δt* a, time-centred) and resultant force, both
-    /// summed in fixed chunks so the result does not depend on the thread count.
+    /// work −Σ m a·v^n Δt* and resultant force, both summed in fixed chunks so the result does
+    /// not depend on the thread count. The work is booked once every effect has kicked, with
+    /// v^n = v^{n+½} − ½Δt* a the midpoint of the whole kick: booked one effect at a time, the
+    /// later effects' share of the kick would be missing from v^n, an error m a_k·a_j Δt*²/2 per
+    /// step that adds up to first order in Δt wherever two effects act on the same particles
+    /// (a contact face and its hourglass control).
     fn apply_effects(&mut self, kick: f64) {
-        for booked in &mut self.effects {
-            self.effect_scratch.fill(Vector::zeros());
+        for (booked, share) in self.effects.iter_mut().zip(&mut self.effect_shares) {
+            share.fill(Vector::zeros());
             let ctx = EffectContext {
                 particles: &self.particles,
                 bonds: &self.bonds,
@@ -916,44 +921,58 @@ impl<const D: usize> Simulation<D> {
                 kick,
                 time: self.time,
             };
-            booked.effect.accelerations(&ctx, &mut self.effect_scratch);
+            booked.effect.accelerations(&ctx, share);
             // A prescribed component moves as imposed whatever acts on it: the effect's force
             // there is taken by the driver, does no work on the particles and is no part of
             // the resultant (a fixed body pressed by a contact would otherwise book the
             // m|a|²Δt² its discarded kick implies, every step).
-            zero_prescribed(&self.prescribed, &mut self.effect_scratch);
+            zero_prescribed(&self.prescribed, share);
             let p = &mut self.particles;
             let masses = &p.masses;
             p.accelerations
                 .par_chunks_mut(CHUNK)
                 .zip(p.velocities.par_chunks_mut(CHUNK))
-                .zip(self.effect_scratch.par_chunks(CHUNK))
+                .zip(share.par_chunks(CHUNK))
+                .enumerate()
+                .map(|(c, ((a, v), s))| {
+                    let mut force = Vector::<D>::zeros();
+                    for k in 0..s.len() {
+                        a[k] += s[k];
+                        v[k] += s[k] * kick;
+                        force += s[k] * masses[c * CHUNK + k];
+                    }
+                    (0.0, force)
+                })
+                .collect_into_vec(&mut self.chunk_sums);
+            let force = self
+                .chunk_sums
+                .iter()
+                .fold(Vector::<D>::zeros(), |f, (_, cf)| f + cf);
+            booked.effect.set_resultant(force);
+        }
+        for (booked, share) in self.effects.iter_mut().zip(&self.effect_shares) {
+            if let Some(stored) = booked.effect.stored_energy() {
+                booked.energy = stored;
+                continue;
+            }
+            let p = &self.particles;
+            let masses = &p.masses;
+            p.accelerations
+                .par_chunks(CHUNK)
+                .zip(p.velocities.par_chunks(CHUNK))
+                .zip(share.par_chunks(CHUNK))
                 .enumerate()
                 .map(|(c, ((a, v), s))| {
                     let mut work = 0.0;
-                    let mut force = Vector::<D>::zeros();
                     for k in 0..s.len() {
-                        let m = masses[c * CHUNK + k];
-                        a[k] += s[k];
-                        v[k] += s[k] * kick;
                         let v_mid = v[k] - a[k] * (0.5 * kick);
-                        work += m * s[k].dot(&v_mid) * kick;
-                        force += s[k] * m;
+                        work += masses[c * CHUNK + k] * s[k].dot(&v_mid) * kick;
                     }
-                    (work, force)
+                    (work, Vector::<D>::zeros())
                 })
                 .collect_into_vec(&mut self.chunk_sums);
-            let (work, force) = self
-                .chunk_sums
-                .iter()
-                .fold((0.0, Vector::<D>::zeros()), |(w, f), (cw, cf)| {
-                    (w + cw, f + cf)
-                });
-            booked.energy = match booked.effect.stored_energy() {
-                Some(stored) => stored,
-                None => booked.energy - work,
-            };
-            booked.effect.set_resultant(force);
+            let work: f64 = self.chunk_sums.iter().map(|(w, _)| w).sum();
+            booked.energy -= work;
         }
     }
 
