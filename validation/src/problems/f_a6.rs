@@ -295,7 +295,8 @@ pub fn simulate_scene(case: Case, text: &str) -> BounceRun {
 fn tl_rows(r: &BounceRun) -> Vec<ReportRow> {
     let tag = r.case.label();
     let (lo, hi) = RESTITUTION_BAND;
-    let mut rows = vec![
+    let after_separation = r.separated.map_or(f64::NAN, |_| r.force_after_separation);
+    let rows = vec![
         ReportRow::absolute(
             ID,
             &format!("{tag}: restitution V_x/U of the ball's centre of mass (band 0.85-1.0)"),
@@ -308,17 +309,9 @@ fn tl_rows(r: &BounceRun) -> Vec<ReportRow> {
         ReportRow::with_error(
             ID,
             &format!("{tag}: largest |contact force| after separation (0; NaN: never separated)"),
-            if r.separated.is_some() {
-                r.force_after_separation
-            } else {
-                f64::NAN
-            },
+            after_separation,
             0.0,
-            if r.separated.is_some() {
-                r.force_after_separation
-            } else {
-                f64::NAN
-            },
+            after_separation,
             0.0,
         ),
         ReportRow::with_error(
@@ -340,10 +333,7 @@ fn tl_rows(r: &BounceRun) -> Vec<ReportRow> {
             0.05,
         ),
     ];
-    for row in &mut rows {
-        *row = row.clone().with_cost(r.cost);
-    }
-    rows
+    rows.into_iter().map(|row| row.with_cost(r.cost)).collect()
 }
 
 /// The final value of energy term `name` relative to the initial total (NaN if absent).
