@@ -246,13 +246,25 @@ impl<const D: usize> CellGrid<D> {
     /// Along axis 0 the three neighbouring cells have consecutive keys, so their points are
     /// contiguous: one range covers a whole row, 3^(D−1) ranges cover the neighbourhood.
     #[inline]
-    fn for_each_range(&self, point: &Vector<D>, mut f: impl FnMut(Range<usize>)) {
+    fn for_each_range(&self, point: &Vector<D>, f: impl FnMut(Range<usize>)) {
+        self.for_each_range_within(point, 1, f)
+    }
+
+    /// Like [`for_each_range`](Self::for_each_range) over the (2 `reach` + 1)^D cells around
+    /// `point`.
+    #[inline]
+    fn for_each_range_within(
+        &self,
+        point: &Vector<D>,
+        reach: i64,
+        mut f: impl FnMut(Range<usize>),
+    ) {
         let mut lo = [0u64; D];
         let mut hi = [0u64; D];
         for axis in 0..D {
             let c = self.coordinate(point, axis);
-            let first = c.saturating_sub(1).max(0);
-            let last = c.saturating_add(1).min(self.dims[axis] as i64 - 1);
+            let first = c.saturating_sub(reach).max(0);
+            let last = c.saturating_add(reach).min(self.dims[axis] as i64 - 1);
             if first > last {
                 return;
             }
@@ -288,10 +300,19 @@ impl<const D: usize> CellGrid<D> {
         (&self.order, &self.sorted_points)
     }
 
-    /// Crate-internal access to the row ranges around a point.
+    /// Crate-internal access to the row ranges of every cell that can hold a point closer to
+    /// `point` than `distance`.
     #[inline]
-    pub(crate) fn ranges_around(&self, point: &Vector<D>, f: impl FnMut(Range<usize>)) {
-        self.for_each_range(point, f)
+    pub(crate) fn ranges_within(
+        &self,
+        point: &Vector<D>,
+        distance: f64,
+        f: impl FnMut(Range<usize>),
+    ) {
+        // |a − b| < distance puts a and b at most ⌈distance / cell⌉ cells apart; one more
+        // covers rounding of the cell coordinates.
+        let reach = (distance * self.inv_cell_size).floor() as i64 + 1;
+        self.for_each_range_within(point, reach, f)
     }
 }
 

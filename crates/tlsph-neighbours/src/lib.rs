@@ -20,5 +20,7 @@ mod search;
 pub use error::NeighbourError;
 pub use grid::CellGrid;
 pub use list::NeighbourList;
-pub use search::{brute_force_neighbour_list, build_neighbour_list};
+pub use search::{
+    brute_force_neighbour_list, build_neighbour_list, build_neighbour_list_with_radii,
+};
 pub use tlsph_math::Vector;

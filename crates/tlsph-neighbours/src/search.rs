@@ -23,8 +23,50 @@ pub fn build_neighbour_list<const D: usize>(
         return Err(NeighbourError::InvalidRadius { radius });
     }
     let grid = CellGrid::new(points, radius)?;
-    let (order, sorted_points) = grid.sorted();
     let r2 = radius * radius;
+    Ok(search(points, &grid, |_| radius, |_, _, d2| d2 < r2))
+}
+
+/// All pairs i ≠ j closer than the mean of their own radii, |x_i − x_j| < (r_i + r_j)/2
+/// (decided as ‖x_j − x_i‖² < ((r_i + r_j)/2)²): the neighbours of particles with different
+/// smoothing lengths, symmetric by construction. Cells are as wide as the smallest radius and
+/// each point scans the cells within (r_i + r_max)/2 of it, so a few large radii do not make
+/// every point scan their volume. Parallel and bit-identical for any thread count, as
+/// [`build_neighbour_list`].
+pub fn build_neighbour_list_with_radii<const D: usize>(
+    points: &[Vector<D>],
+    radii: &[f64],
+) -> Result<NeighbourList, NeighbourError> {
+    assert_eq!(points.len(), radii.len(), "one radius per point");
+    if let Some(&radius) = radii.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+        return Err(NeighbourError::InvalidRadius { radius });
+    }
+    let smallest = radii.iter().copied().fold(f64::INFINITY, f64::min);
+    let largest = radii.iter().copied().fold(0.0, f64::max);
+    if points.is_empty() {
+        return Ok(NeighbourList::from_parts(vec![0], Vec::new()));
+    }
+    let grid = CellGrid::new(points, smallest)?;
+    Ok(search(
+        points,
+        &grid,
+        |i| 0.5 * (radii[i] + largest),
+        |i, j, d2| {
+            let r = 0.5 * (radii[i] + radii[j]);
+            d2 < r * r
+        },
+    ))
+}
+
+/// Cell-list search: for every point i, the candidates j ≠ i in the cells within `reach(i)` of
+/// it for which `keep(i, j, ‖x_j − x_i‖²)` holds (a predicate that implies d < reach(i)).
+fn search<const D: usize>(
+    points: &[Vector<D>],
+    grid: &CellGrid<D>,
+    reach: impl Fn(usize) -> f64 + Sync,
+    keep: impl Fn(usize, usize, f64) -> bool + Sync,
+) -> NeighbourList {
+    let (order, sorted_points) = grid.sorted();
     let n = points.len();
 
     // Per chunk: neighbour counts and the concatenated sorted lists of its particles.
@@ -37,9 +79,9 @@ pub fn build_neighbour_list<const D: usize>(
             for i in particles {
                 let x = points[i];
                 let start = indices.len();
-                grid.ranges_around(&x, |range| {
+                grid.ranges_within(&x, reach(i), |range| {
                     for (&j, p) in order[range.clone()].iter().zip(&sorted_points[range]) {
-                        if (p - x).norm_squared() < r2 && j as usize != i {
+                        if j as usize != i && keep(i, j as usize, (p - x).norm_squared()) {
                             indices.push(j);
                         }
                     }
@@ -61,7 +103,7 @@ pub fn build_neighbour_list<const D: usize>(
         }
         indices.extend_from_slice(&chunk_indices);
     }
-    Ok(NeighbourList::from_parts(offsets, indices))
+    NeighbourList::from_parts(offsets, indices)
 }
 
 /// O(N²) reference used by tests: the same predicate ‖x_j − x_i‖² < radius², no validation (a

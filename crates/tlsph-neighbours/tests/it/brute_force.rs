@@ -1,7 +1,8 @@
 //! The cell-grid search returns exactly the brute-force pair list.
 
 use tlsph_neighbours::{
-    brute_force_neighbour_list, build_neighbour_list, CellGrid, NeighbourList, Vector,
+    brute_force_neighbour_list, build_neighbour_list, build_neighbour_list_with_radii, CellGrid,
+    NeighbourList, Vector,
 };
 
 use crate::XorShift;
@@ -186,4 +187,61 @@ fn cell_grid_visits_every_close_point_from_any_query() {
     let mut count = 0;
     grid.for_each_candidate(&Vector::<2>::new(1e6, -1e6), |_| count += 1);
     assert_eq!(count, 0);
+}
+
+/// Per-point radii: the pairs closer than the mean of their two radii, by brute force.
+fn brute_force_with_radii<const D: usize>(points: &[Vector<D>], radii: &[f64]) -> NeighbourList {
+    let lists = points
+        .iter()
+        .enumerate()
+        .map(|(i, x)| {
+            points
+                .iter()
+                .enumerate()
+                .filter(|&(j, p)| {
+                    let r = 0.5 * (radii[i] + radii[j]);
+                    j != i && (p - x).norm_squared() < r * r
+                })
+                .map(|(j, _)| j as u32)
+                .collect()
+        })
+        .collect();
+    NeighbourList::from_sorted_lists(lists)
+}
+
+#[test]
+fn variable_radii_match_brute_force_and_stay_symmetric() {
+    for seed in 21..=23 {
+        let mut rng = XorShift::new(seed);
+        let points = uniform::<3>(seed, 1200, 6.0);
+        // Radii spread over a factor of five, as after a reference update in a strongly
+        // stretched region next to an undeformed one.
+        let radii: Vec<f64> = (0..points.len()).map(|_| rng.range(0.2, 1.0)).collect();
+        let fast = build_neighbour_list_with_radii(&points, &radii).unwrap();
+        assert_eq!(fast, brute_force_with_radii(&points, &radii), "seed {seed}");
+        for i in 0..points.len() {
+            for &j in fast.neighbours_of(i) {
+                assert!(fast.neighbours_of(j as usize).contains(&(i as u32)));
+            }
+        }
+        // Equal radii: the fixed-radius search.
+        let equal = vec![0.7; points.len()];
+        assert_eq!(
+            build_neighbour_list_with_radii(&points, &equal).unwrap(),
+            build_neighbour_list(&points, 0.7).unwrap()
+        );
+    }
+}
+
+#[test]
+fn a_bad_radius_is_named() {
+    let points = uniform::<2>(5, 10, 1.0);
+    let mut radii = vec![0.3; 10];
+    radii[4] = f64::NAN;
+    assert!(build_neighbour_list_with_radii(&points, &radii).is_err());
+    radii[4] = -1.0;
+    match build_neighbour_list_with_radii(&points, &radii) {
+        Err(tlsph_neighbours::NeighbourError::InvalidRadius { radius }) => assert_eq!(radius, -1.0),
+        other => panic!("expected InvalidRadius, got {other:?}"),
+    }
 }
