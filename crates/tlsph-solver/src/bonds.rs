@@ -29,6 +29,9 @@ pub struct Bonds<const D: usize> {
     pub(crate) reverse_gradient: Vec<Vector<D>>,
     /// Σ_J V0_J G̃_IJ per particle (vanishes in the interior; needed by the force sum).
     pub(crate) gradient_sum: Vec<Vector<D>>,
+    /// Per particle (ghosts included), its smoothing length over its body's, when a reference
+    /// update has widened supports (empty: all 1). See [`PairKernel`].
+    pub(crate) kernel_scale: Vec<f64>,
 }
 
 /// What the gradient correction had to do at setup.
@@ -83,6 +86,9 @@ pub(crate) struct BodyBonds<const D: usize> {
     pub neighbours: NeighbourList,
     /// The body's kernel.
     pub kernel: AnyKernel,
+    /// Per local point, its smoothing length over the body's (empty: all 1; see
+    /// [`PairKernel`]).
+    pub kernel_scale: Vec<f64>,
 }
 
 /// Builds bonds for all bodies (in order) and their gradients.
@@ -105,6 +111,12 @@ pub(crate) fn build_bonds<const D: usize>(
             .into_par_iter()
             .map(|i| particle_gradients(i, body, corrected))
             .collect();
+        if !body.kernel_scale.is_empty() {
+            bonds.kernel_scale.resize(n_total, 1.0);
+            for (&g, &s) in body.global.iter().zip(&body.kernel_scale) {
+                bonds.kernel_scale[g] = s;
+            }
+        }
         let base = bonds.neighbours.len();
         for (i, (grads, regularised)) in per_particle.iter().enumerate() {
             if *regularised {
@@ -207,7 +219,10 @@ impl<const D: usize> Bonds<D> {
         affected.sort_unstable();
         affected.dedup();
         for &i in &affected {
-            let kernel = kernel_of(i);
+            let kernel = PairKernel {
+                kernel: &kernel_of(i),
+                scale: &self.kernel_scale,
+            };
             let range = self.range(i);
             let alive: Vec<usize> = self.neighbours[range.clone()]
                 .iter()
@@ -284,7 +299,10 @@ fn particle_gradients<const D: usize>(
         &neighbours,
         &body.positions0,
         &body.volumes0,
-        &body.kernel,
+        &PairKernel {
+            kernel: &body.kernel,
+            scale: &body.kernel_scale,
+        },
         corrected,
     )
 }
@@ -297,21 +315,21 @@ fn gradients_of<const D: usize>(
     neighbours: &[usize],
     x: &[Vector<D>],
     v0: &[f64],
-    kernel: &AnyKernel,
+    kernel: &PairKernel<'_>,
     corrected: bool,
 ) -> (Vec<Vector<D>>, bool) {
     let raw: Vec<Vector<D>> = neighbours
         .iter()
-        .map(|&j| kernel.gradient(&(x[i] - x[j])))
+        .map(|&j| kernel.gradient(i, j, &(x[i] - x[j])))
         .collect();
     if !corrected {
         return (raw, false);
     }
     // Shepard sum including the particle itself (R 4.32): S_I = Σ_J V0_J W_IJ.
-    let mut shepard = v0[i] * kernel.value(0.0);
+    let mut shepard = v0[i] * kernel.value(i, i, 0.0);
     let mut gradient_sum = Vector::<D>::zeros();
     for (&j, g) in neighbours.iter().zip(&raw) {
-        shepard += v0[j] * kernel.value((x[i] - x[j]).norm());
+        shepard += v0[j] * kernel.value(i, j, (x[i] - x[j]).norm());
         gradient_sum += g * v0[j];
     }
     // Quotient-rule Shepard gradient (R 6.7): ∇W̃_IJ = (G_IJ S_I − W_IJ Σ_K V0_K G_IK) / S_I².
@@ -319,7 +337,7 @@ fn gradients_of<const D: usize>(
         .iter()
         .zip(&raw)
         .map(|(&j, g)| {
-            let w = kernel.value((x[i] - x[j]).norm());
+            let w = kernel.value(i, j, (x[i] - x[j]).norm());
             (g * shepard - gradient_sum * w) / (shepard * shepard)
         })
         .collect();
@@ -332,6 +350,51 @@ fn gradients_of<const D: usize>(
     let (b, regularised) = guarded_inverse(&a);
     let corrected = normalised.iter().map(|g| b.transpose() * g).collect();
     (corrected, regularised)
+}
+
+/// A body's kernel for the pair (I, J) with the smoothing length h_IJ = s_IJ h, where
+/// s_IJ = (s_I + s_J)/2 is the mean of the two particles' factors (symmetric, so the reference
+/// neighbour lists stay symmetric and G_IJ = −G_JI for the raw kernel). A kernel of the form
+/// W(r, h) = h^−d w(r/h) (numerics.md §1) gives W(r, s h) = s^−d W(r/s, h) and
+/// ∇W(r, s h) = s^−(d+1) ∇W(r/s, h). All factors are 1 (the body kernel itself) unless a
+/// reference update has widened supports (`reference.rs`).
+pub(crate) struct PairKernel<'a> {
+    /// The body's kernel (smoothing length h).
+    pub kernel: &'a AnyKernel,
+    /// Factor s per particle, indexed like the positions passed in (empty: all 1).
+    pub scale: &'a [f64],
+}
+
+impl PairKernel<'_> {
+    /// s_IJ.
+    #[inline]
+    fn scale(&self, i: usize, j: usize) -> f64 {
+        if self.scale.is_empty() {
+            1.0
+        } else {
+            0.5 * (self.scale[i] + self.scale[j])
+        }
+    }
+
+    /// W(r, h_IJ).
+    #[inline]
+    pub fn value(&self, i: usize, j: usize, r: f64) -> f64 {
+        let s = self.scale(i, j);
+        if s == 1.0 {
+            return self.kernel.value(r);
+        }
+        self.kernel.value(r / s) / s.powi(self.kernel.dimension() as i32)
+    }
+
+    /// ∇_I W(|r_IJ|, h_IJ).
+    #[inline]
+    pub fn gradient<const D: usize>(&self, i: usize, j: usize, r_ij: &Vector<D>) -> Vector<D> {
+        let s = self.scale(i, j);
+        if s == 1.0 {
+            return self.kernel.gradient(r_ij);
+        }
+        self.kernel.gradient(&(r_ij / s)) / s.powi(self.kernel.dimension() as i32 + 1)
+    }
 }
 
 /// A⁻¹, or a pseudo-inverse with singular values clipped from below when A is degenerate

@@ -34,8 +34,9 @@ pub use model::{
     ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
     ContactDescription, DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic,
     FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
-    PenaltyContactDescription, PressureModel, RampShape, ReferenceUpdate, SimulationConfig,
-    StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp, WallDescription,
+    PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
+    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
+    WallDescription,
 };
 pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

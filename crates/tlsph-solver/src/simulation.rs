@@ -212,6 +212,7 @@ impl<const D: usize> Simulation<D> {
             &kernels,
             &mut particles,
             &model.effects.symmetry_planes,
+            &[],
             corrected,
             true,
         )?;
@@ -376,6 +377,7 @@ impl<const D: usize> Simulation<D> {
                 check_reference_update(&model, update, any_failure)?;
                 Some(ReferenceState::new(
                     update.strain_threshold,
+                    update.support,
                     &particles.positions0[..n_real],
                 ))
             }
@@ -642,6 +644,7 @@ impl<const D: usize> Simulation<D> {
             return Ok(());
         };
         let p = &mut self.particles;
+        reference.advance(&p.deformation_gradient[..n_real]);
         for info in &self.bodies {
             let r = info.range.clone();
             p.positions0[r.clone()]
@@ -667,6 +670,7 @@ impl<const D: usize> Simulation<D> {
             &self.kernels,
             p,
             &self.planes,
+            &reference.kernel_scale,
             corrected,
             false,
         )
@@ -1503,6 +1507,7 @@ fn build_reference<const D: usize>(
     kernels: &[tlsph_kernels::AnyKernel],
     particles: &mut Particles<D>,
     planes: &[crate::model::SymmetryPlane],
+    kernel_scale: &[f64],
     corrected: bool,
     setup: bool,
 ) -> Result<(Ghosts<D>, Bonds<D>, CorrectionReport), SetupError> {
@@ -1510,7 +1515,12 @@ fn build_reference<const D: usize>(
     let mut ghosts = Ghosts::default();
     let mut body_bonds = Vec::with_capacity(bodies.len());
     for (info, &kernel) in bodies.iter().zip(kernels) {
-        let mut local = mirror_body(info, particles, planes, kernel, setup)?;
+        // The body's kernel factors s_I (empty: all 1, unless a reference update widened them).
+        let scale = kernel_scale
+            .get(info.range.clone())
+            .filter(|s| s.iter().any(|&s| s != 1.0))
+            .unwrap_or(&[]);
+        let mut local = mirror_body(info, particles, planes, kernel, scale, setup)?;
         // Append this body's ghosts as particles (never integrated; refreshed each step).
         for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
             let global_parent = info.range.start + parent;
@@ -1528,11 +1538,30 @@ fn build_reference<const D: usize>(
             ghosts.mask.push(mask);
             ghosts.of.insert((global_parent, mask), ghost);
         }
-        local.neighbours = build_neighbour_list(&local.positions0, kernel.support_radius())
-            .map_err(|e| SetupError::Neighbours {
-                body: info.name.clone(),
-                message: e.to_string(),
-            })?;
+        let neighbours = if scale.is_empty() {
+            build_neighbour_list(&local.positions0, kernel.support_radius())
+        } else {
+            // Per-particle supports 2h s_I (a ghost has its parent's factor); a pair is kept
+            // within its own support 2h (s_I + s_J)/2.
+            local.kernel_scale = local
+                .global
+                .iter()
+                .map(|&g| match g.checked_sub(n_real) {
+                    None => kernel_scale[g],
+                    Some(ghost) => kernel_scale[ghosts.parent[ghost]],
+                })
+                .collect();
+            let radii: Vec<f64> = local
+                .kernel_scale
+                .iter()
+                .map(|s| s * kernel.support_radius())
+                .collect();
+            tlsph_neighbours::build_neighbour_list_with_radii(&local.positions0, &radii)
+        };
+        local.neighbours = neighbours.map_err(|e| SetupError::Neighbours {
+            body: info.name.clone(),
+            message: e.to_string(),
+        })?;
         body_bonds.push(local);
     }
     ghosts.first = n_real;
@@ -1541,7 +1570,9 @@ fn build_reference<const D: usize>(
 }
 
 /// The body's reals and their mirror images across every non-empty combination of symmetry
-/// planes within the kernel support (corner ghosts when several planes meet). With
+/// planes within the kernel support (corner ghosts when several planes meet). With kernel
+/// factors `scale` (body-local, empty: all 1), the image of particle I can meet a particle J
+/// within 2h (s_I + s_J)/2, so I is mirrored within 2h (s_I + s_max)/2 of a plane. With
 /// `check_sides`, the planes must exist in `D` dimensions and every real must lie strictly on
 /// one side of each.
 fn mirror_body<const D: usize>(
@@ -1549,9 +1580,14 @@ fn mirror_body<const D: usize>(
     particles: &Particles<D>,
     planes: &[crate::model::SymmetryPlane],
     kernel: tlsph_kernels::AnyKernel,
+    scale: &[f64],
     check_sides: bool,
 ) -> Result<BodyBonds<D>, SetupError> {
-    let support = kernel.support_radius();
+    let largest = scale.iter().copied().fold(1.0, f64::max);
+    let support = |i: usize| match scale.get(i) {
+        None => kernel.support_radius(),
+        Some(s) => 0.5 * (s + largest) * kernel.support_radius(),
+    };
     let reals = &particles.positions0[info.range.clone()];
     let n_real = reals.len();
     for plane in planes.iter().filter(|_| check_sides) {
@@ -1615,7 +1651,8 @@ fn mirror_body<const D: usize>(
     for mask in 1..n_masks {
         for (i, x) in reals.iter().enumerate() {
             let near = planes.iter().enumerate().all(|(k, plane)| {
-                mask & (1 << k) == 0 || (x[plane.axis] - plane.position).abs() < support + depth[k]
+                mask & (1 << k) == 0
+                    || (x[plane.axis] - plane.position).abs() < support(i) + depth[k]
             });
             if !near {
                 continue;
@@ -1642,6 +1679,7 @@ fn mirror_body<const D: usize>(
         signs,
         neighbours: Default::default(),
         kernel,
+        kernel_scale: Vec::new(),
     })
 }
 

@@ -4,7 +4,7 @@
 //! is booked separately in the energy balance.
 
 use super::{Effect, EffectContext};
-use crate::bonds::Bonds;
+use crate::bonds::{Bonds, PairKernel};
 use crate::particles::Particles;
 use rayon::prelude::*;
 use tlsph_kernels::{AnyKernel, Kernel};
@@ -59,6 +59,12 @@ impl HourglassControl {
         self.bond_weight.clear();
         for i in 0..n {
             let kernel = self.kernels[self.body[i] as usize];
+            // The bond's own kernel: wider than the body's after a reference update that
+            // widened supports.
+            let pair = PairKernel {
+                kernel: &kernel,
+                scale: &bonds.kernel_scale,
+            };
             for &j in bonds.neighbours_of(i) {
                 let j = j as usize;
                 let r0 = (x0[i] - x0[j]).norm();
@@ -66,7 +72,7 @@ impl HourglassControl {
                 // update can bring two particles closer, where 1/|X_IJ|² would blow up.
                 let r_floor = r0.max(0.5 * kernel.smoothing_length());
                 self.bond_weight
-                    .push(v0[j] * kernel.value(r0) / (r_floor * r_floor));
+                    .push(v0[j] * pair.value(i, j, r0) / (r_floor * r_floor));
             }
         }
         self.particle_factor = (0..n)

@@ -6,13 +6,18 @@ use super::{lattice, model, Setup};
 use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BoundaryDescription, Formulation, MaterialModel, Model, ParticleField, ReferenceUpdate,
-    SetupError, Simulation, StressUpdate,
+    BoundaryDescription, Formulation, MaterialModel, Model, ParticleField, ReferenceSupport,
+    ReferenceUpdate, SetupError, Simulation, StressUpdate,
 };
 
 /// A plastic plane-strain block of 10 × 8 particles whose every particle is driven with
 /// v = H X, so x = (I + tH) X stays exactly affine: F = I + tH reaches strains of about 0.5.
 fn driven_block(reference_update: Option<f64>) -> Model<2> {
+    driven_block_with(reference_update, ReferenceSupport::Stretched)
+}
+
+/// [`driven_block`] with the given choice of kernel supports on an updated reference.
+fn driven_block_with(reference_update: Option<f64>, support: ReferenceSupport) -> Model<2> {
     let dx = 1e-3;
     let positions = lattice([10, 8], dx);
     let h = Tensor::<2>::new(-400.0, 150.0, 50.0, 250.0); // 1/s
@@ -41,18 +46,27 @@ fn driven_block(reference_update: Option<f64>) -> Model<2> {
             ramp: None,
         })
         .collect();
-    m.effects.reference_update =
-        reference_update.map(|strain_threshold| ReferenceUpdate { strain_threshold });
+    m.effects.reference_update = reference_update.map(|strain_threshold| ReferenceUpdate {
+        strain_threshold,
+        support,
+    });
     m
 }
 
 #[test]
 fn re_referencing_an_affine_motion_changes_nothing_but_the_reference() {
-    // With corrected gradients F is exact for an affine motion on any reference, so the run
-    // with updates must reproduce the run without them: stress, plastic strain, density and
-    // energy to round-off (the rates D, W are the same; only F is factored differently).
+    // With corrected gradients F is exact for an affine motion on any reference and any
+    // kernel supports, so the run with updates must reproduce the run without them: stress,
+    // plastic strain, density and energy to round-off (the rates D, W are the same; only F is
+    // factored differently).
+    for support in [ReferenceSupport::Stretched, ReferenceSupport::Fixed] {
+        affine_motion_is_reproduced(support);
+    }
+}
+
+fn affine_motion_is_reproduced(support: ReferenceSupport) {
     let mut plain = Simulation::new(driven_block(None)).unwrap();
-    let mut updated = Simulation::new(driven_block(Some(0.05))).unwrap();
+    let mut updated = Simulation::new(driven_block_with(Some(0.05), support)).unwrap();
     plain.run(|_, _| {}).unwrap();
     updated.run(|_, _| {}).unwrap();
     assert_eq!(plain.steps_done(), updated.steps_done());
@@ -95,6 +109,51 @@ fn re_referencing_an_affine_motion_changes_nothing_but_the_reference() {
     // ρ = ρ0 / det(I + tH) at t = 1 ms.
     let det = (1.0 - 0.4) * (1.0 + 0.25) - 0.15 * 0.05;
     approx::assert_relative_eq!(rho, 8990.0 / det, max_relative = 1e-9);
+}
+
+/// Initial-configuration neighbour pairs (real particles) of a simulation's current bonds that
+/// are no longer bonds, out of all initial pairs.
+fn initial_pairs_lost(initial: &[Vec<u32>], sim: &Simulation<2>) -> (usize, usize) {
+    let mut lost = 0;
+    let mut total = 0;
+    for (i, list) in initial.iter().enumerate() {
+        for &j in list {
+            total += 1;
+            if !sim.bonds().neighbours_of(i).contains(&j) {
+                lost += 1;
+            }
+        }
+    }
+    (lost, total)
+}
+
+#[test]
+fn stretched_supports_keep_every_initial_neighbour_and_fixed_ones_lose_some() {
+    // The driven block ends stretched by λ_max ≈ 1.3 (F = I + tH). A stretched support
+    // h λ_max(F0) covers the image of every initial support, so no initial pair leaves the
+    // bonds; with the body's h, pairs stretched beyond 2h drop out.
+    let initial: Vec<Vec<u32>> = {
+        let sim = Simulation::new(driven_block(None)).unwrap();
+        (0..sim.n_particles())
+            .map(|i| sim.bonds().neighbours_of(i).to_vec())
+            .collect()
+    };
+    let run = |support| {
+        let mut sim = Simulation::new(driven_block_with(Some(0.05), support)).unwrap();
+        sim.run(|_, _| {}).unwrap();
+        assert!(sim.reference_updates() >= 5);
+        initial_pairs_lost(&initial, &sim)
+    };
+    let (lost, total) = run(ReferenceSupport::Stretched);
+    assert_eq!(
+        lost, 0,
+        "{lost} of {total} initial pairs lost with stretched supports"
+    );
+    let (lost, total) = run(ReferenceSupport::Fixed);
+    assert!(
+        lost * 20 > total,
+        "with fixed supports the stretch must cost initial pairs ({lost} of {total})"
+    );
 }
 
 fn free_block_with_threads(threads: usize) -> (Vec<Vector<2>>, Vec<tlsph_math::Tensor3>, u64) {

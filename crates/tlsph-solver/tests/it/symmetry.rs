@@ -66,8 +66,10 @@ fn a_quarter_model_with_two_planes_moves_like_the_full_model() {
             .filter(|x| x[0] > 0.0 && x[1] > 0.0)
             .collect();
         let mut full = model(full_positions.clone(), dx, symmetric_velocity, setup());
-        full.effects.reference_update =
-            reference_update.map(|strain_threshold| ReferenceUpdate { strain_threshold });
+        full.effects.reference_update = reference_update.map(|strain_threshold| ReferenceUpdate {
+            strain_threshold,
+            support: Default::default(),
+        });
         let mut quarter = model(quarter_positions.clone(), dx, symmetric_velocity, setup());
         quarter.effects.reference_update = full.effects.reference_update;
         quarter.effects.symmetry_planes = vec![
