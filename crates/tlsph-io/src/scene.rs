@@ -14,8 +14,8 @@ use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
     ContactDescription, EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model,
-    ParticleField, PenaltyContactDescription, PressureModel, RampShape, SimulationConfig,
-    StressUpdate, SymmetryPlane, VelocityRamp, WallDescription,
+    ParticleField, PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport,
+    SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp, WallDescription,
 };
 use toml::Spanned;
 
@@ -754,9 +754,24 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 "cannot be combined with [xsph] yet".into(),
             ));
         }
+        let support = match &r.support {
+            None => ReferenceSupport::Stretched,
+            Some(s) => match s.get_ref().as_str() {
+                "stretched" => ReferenceSupport::Stretched,
+                "fixed" => ReferenceSupport::Fixed,
+                other => {
+                    return Err(ctx.error(
+                        &s.span(),
+                        "reference_update.support",
+                        format!("unknown support `{other}` (expected \"stretched\" or \"fixed\")"),
+                    ))
+                }
+            },
+        };
         effects.reference_update = Some(tlsph_solver::ReferenceUpdate {
             strain_threshold: ctx
                 .positive(&r.strain_threshold, "reference_update.strain_threshold")?,
+            support,
         });
     }
     let output = OutputSpec {

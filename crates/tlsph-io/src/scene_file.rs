@@ -135,6 +135,8 @@ pub(crate) struct WallTable {
 #[serde(deny_unknown_fields)]
 pub(crate) struct ReferenceUpdateTable {
     pub strain_threshold: Spanned<f64>,
+    /// "stretched" (default) or "fixed".
+    pub support: Option<Spanned<String>>,
 }
 
 /// `[hourglass_control]`: Ganzenmüller's penalty.

@@ -2,6 +2,7 @@
 
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
+use tlsph_solver::ReferenceSupport;
 
 mod body_force;
 mod contact;
@@ -422,8 +423,18 @@ fn reference_update_is_read_and_checked_with_field_and_line() {
     let ok = format!("{PLATE_IMPACT}\n[reference_update]\nstrain_threshold = 0.1\n");
     match parse_scene(&ok, "scene.toml").unwrap().model {
         DimensionModel::One(m) => assert_eq!(
-            m.effects.reference_update.map(|r| r.strain_threshold),
-            Some(0.1)
+            m.effects
+                .reference_update
+                .map(|r| (r.strain_threshold, r.support)),
+            Some((0.1, ReferenceSupport::Stretched))
+        ),
+        _ => unreachable!(),
+    }
+    let fixed = format!("{ok}support = \"fixed\"\n");
+    match parse_scene(&fixed, "scene.toml").unwrap().model {
+        DimensionModel::One(m) => assert_eq!(
+            m.effects.reference_update.map(|r| r.support),
+            Some(ReferenceSupport::Fixed)
         ),
         _ => unreachable!(),
     }
@@ -434,6 +445,11 @@ fn reference_update_is_read_and_checked_with_field_and_line() {
             "reference_update.strain_threshold",
         ),
         (
+            PLATE_IMPACT.to_string(),
+            "strain_threshold = 0.1\nsupport = \"adaptive\"",
+            "reference_update.support",
+        ),
+        (
             rod_impact("updated-lagrangian"),
             "strain_threshold = 0.1",
             "reference_update",
@@ -442,6 +458,7 @@ fn reference_update_is_read_and_checked_with_field_and_line() {
         let text = format!("{base}\n[reference_update]\n{bad}\n");
         let e = error_of(&text);
         assert_eq!(e.field, field, "{e}");
-        assert_eq!(e.line, Some(line_of(&text, bad)), "{e}");
+        let last_line = bad.lines().last().unwrap();
+        assert_eq!(e.line, Some(line_of(&text, last_line)), "{e}");
     }
 }
