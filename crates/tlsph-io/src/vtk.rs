@@ -21,7 +21,7 @@ pub struct FrameArray {
 /// The particles of one instant, always in 3D (1D and 2D runs are padded with zeros).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Frame {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time: f64,
     /// Current positions.
     pub positions: Vec<[f64; 3]>,
