@@ -239,6 +239,34 @@ impl Context<'_> {
         }
     }
 
+    /// An optional keyword key: `default` when absent, else the value paired with the word in
+    /// `choices`; an unknown word is an error naming `field` and listing the choices, e.g.
+    /// "unknown ramp shape `steep` (expected \"smooth\" or \"linear\")".
+    pub(crate) fn keyword<T: Copy>(
+        &self,
+        value: Option<&Spanned<String>>,
+        field: &str,
+        what: &str,
+        default: T,
+        choices: &[(&str, T)],
+    ) -> Result<T, SceneError> {
+        let Some(value) = value else {
+            return Ok(default);
+        };
+        let word = value.get_ref().as_str();
+        match choices.iter().find(|(name, _)| *name == word) {
+            Some(&(_, choice)) => Ok(choice),
+            None => {
+                let names: Vec<String> = choices.iter().map(|(n, _)| format!("\"{n}\"")).collect();
+                Err(self.error(
+                    &value.span(),
+                    field,
+                    format!("unknown {what} `{word}` (expected {})", names.join(" or ")),
+                ))
+            }
+        }
+    }
+
     /// Indices of the bodies named in `names` (each must exist).
     fn body_indices<const D: usize>(
         &self,
@@ -754,20 +782,16 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 "cannot be combined with [xsph] yet".into(),
             ));
         }
-        let support = match &r.support {
-            None => ReferenceSupport::Stretched,
-            Some(s) => match s.get_ref().as_str() {
-                "stretched" => ReferenceSupport::Stretched,
-                "fixed" => ReferenceSupport::Fixed,
-                other => {
-                    return Err(ctx.error(
-                        &s.span(),
-                        "reference_update.support",
-                        format!("unknown support `{other}` (expected \"stretched\" or \"fixed\")"),
-                    ))
-                }
-            },
-        };
+        let support = ctx.keyword(
+            r.support.as_ref(),
+            "reference_update.support",
+            "support",
+            ReferenceSupport::Stretched,
+            &[
+                ("stretched", ReferenceSupport::Stretched),
+                ("fixed", ReferenceSupport::Fixed),
+            ],
+        )?;
         effects.reference_update = Some(tlsph_solver::ReferenceUpdate {
             strain_threshold: ctx
                 .positive(&r.strain_threshold, "reference_update.strain_threshold")?,
@@ -1381,20 +1405,13 @@ fn parse_ramp(
         (Some(time), _) => time,
     };
     let duration = ctx.positive(time, &field("ramp_time"))?;
-    let shape = match shape {
-        None => RampShape::Smooth,
-        Some(s) => match s.get_ref().as_str() {
-            "smooth" => RampShape::Smooth,
-            "linear" => RampShape::Linear,
-            other => {
-                return Err(ctx.error(
-                    &s.span(),
-                    &field("ramp_shape"),
-                    format!("unknown ramp shape `{other}` (expected \"smooth\" or \"linear\")"),
-                ))
-            }
-        },
-    };
+    let shape = ctx.keyword(
+        shape.as_ref(),
+        &field("ramp_shape"),
+        "ramp shape",
+        RampShape::Smooth,
+        &[("smooth", RampShape::Smooth), ("linear", RampShape::Linear)],
+    )?;
     Ok(Some(VelocityRamp { duration, shape }))
 }
 

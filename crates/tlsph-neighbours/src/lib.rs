@@ -21,6 +21,7 @@ pub use error::NeighbourError;
 pub use grid::CellGrid;
 pub use list::NeighbourList;
 pub use search::{
-    brute_force_neighbour_list, build_neighbour_list, build_neighbour_list_with_radii,
+    brute_force_neighbour_list, brute_force_neighbour_list_with_radii, build_neighbour_list,
+    build_neighbour_list_with_radii,
 };
 pub use tlsph_math::Vector;

@@ -113,6 +113,26 @@ pub fn brute_force_neighbour_list<const D: usize>(
     radius: f64,
 ) -> NeighbourList {
     let r2 = radius * radius;
+    brute_force(points, |_, _, d2| d2 < r2)
+}
+
+/// O(N²) reference for [`build_neighbour_list_with_radii`], with its predicate
+/// ‖x_j − x_i‖² < ((r_i + r_j)/2)²; no validation.
+pub fn brute_force_neighbour_list_with_radii<const D: usize>(
+    points: &[Vector<D>],
+    radii: &[f64],
+) -> NeighbourList {
+    brute_force(points, |i, j, d2| {
+        let r = 0.5 * (radii[i] + radii[j]);
+        d2 < r * r
+    })
+}
+
+/// Every pair i ≠ j for which `keep(i, j, ‖x_j − x_i‖²)` holds, by testing all of them.
+fn brute_force<const D: usize>(
+    points: &[Vector<D>],
+    keep: impl Fn(usize, usize, f64) -> bool,
+) -> NeighbourList {
     let lists = points
         .iter()
         .enumerate()
@@ -120,7 +140,7 @@ pub fn brute_force_neighbour_list<const D: usize>(
             points
                 .iter()
                 .enumerate()
-                .filter(|&(j, p)| j != i && (p - x).norm_squared() < r2)
+                .filter(|&(j, p)| j != i && keep(i, j, (p - x).norm_squared()))
                 .map(|(j, _)| j as u32)
                 .collect()
         })

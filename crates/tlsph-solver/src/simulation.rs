@@ -1546,10 +1546,7 @@ fn build_reference<const D: usize>(
             local.kernel_scale = local
                 .global
                 .iter()
-                .map(|&g| match g.checked_sub(n_real) {
-                    None => kernel_scale[g],
-                    Some(ghost) => kernel_scale[ghosts.parent[ghost]],
-                })
+                .map(|&g| kernel_scale[g.checked_sub(n_real).map_or(g, |k| ghosts.parent[k])])
                 .collect();
             let radii: Vec<f64> = local
                 .kernel_scale

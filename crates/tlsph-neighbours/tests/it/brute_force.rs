@@ -1,8 +1,8 @@
 //! The cell-grid search returns exactly the brute-force pair list.
 
 use tlsph_neighbours::{
-    brute_force_neighbour_list, build_neighbour_list, build_neighbour_list_with_radii, CellGrid,
-    NeighbourList, Vector,
+    brute_force_neighbour_list, brute_force_neighbour_list_with_radii, build_neighbour_list,
+    build_neighbour_list_with_radii, CellGrid, NeighbourList, Vector,
 };
 
 use crate::XorShift;
@@ -189,26 +189,6 @@ fn cell_grid_visits_every_close_point_from_any_query() {
     assert_eq!(count, 0);
 }
 
-/// Per-point radii: the pairs closer than the mean of their two radii, by brute force.
-fn brute_force_with_radii<const D: usize>(points: &[Vector<D>], radii: &[f64]) -> NeighbourList {
-    let lists = points
-        .iter()
-        .enumerate()
-        .map(|(i, x)| {
-            points
-                .iter()
-                .enumerate()
-                .filter(|&(j, p)| {
-                    let r = 0.5 * (radii[i] + radii[j]);
-                    j != i && (p - x).norm_squared() < r * r
-                })
-                .map(|(j, _)| j as u32)
-                .collect()
-        })
-        .collect();
-    NeighbourList::from_sorted_lists(lists)
-}
-
 #[test]
 fn variable_radii_match_brute_force_and_stay_symmetric() {
     for seed in 21..=23 {
@@ -218,7 +198,11 @@ fn variable_radii_match_brute_force_and_stay_symmetric() {
         // stretched region next to an undeformed one.
         let radii: Vec<f64> = (0..points.len()).map(|_| rng.range(0.2, 1.0)).collect();
         let fast = build_neighbour_list_with_radii(&points, &radii).unwrap();
-        assert_eq!(fast, brute_force_with_radii(&points, &radii), "seed {seed}");
+        assert_eq!(
+            fast,
+            brute_force_neighbour_list_with_radii(&points, &radii),
+            "seed {seed}"
+        );
         for i in 0..points.len() {
             for &j in fast.neighbours_of(i) {
                 assert!(fast.neighbours_of(j as usize).contains(&(i as u32)));
