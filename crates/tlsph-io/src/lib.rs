@@ -10,7 +10,7 @@ mod scene_file;
 mod scene_material;
 pub mod vtk;
 
-pub use geometry::{fill_shape, Shape};
+pub use geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape, VOLUME_SUBSAMPLES};
 pub use run::{
     frame_of, run_model, run_scene, run_scene_to_dir, run_scene_with_frames, write_csv, FrameSink,
     Intervals, ProbeHistory, Progress, RunError, RunRecord,

@@ -1,7 +1,7 @@
 //! Reading a scene: parse the TOML, check every value, build particles from shapes, and turn
 //! it into a solver `Model`. Every error names the file, line, column and field.
 
-use crate::geometry::{fill_shape, Shape};
+use crate::geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape};
 use crate::scene_file::{
     BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
 };
@@ -1081,6 +1081,7 @@ fn build_body<const D: usize>(
     };
     let mut positions: Vec<Vector<D>> = Vec::new();
     let mut velocities: Vec<Vector<D>> = Vec::new();
+    let mut fills: Vec<Fill<D>> = Vec::new();
     for (k, s) in shapes.iter().enumerate() {
         let sfield = |key: &str| {
             if shapes.len() == 1 {
@@ -1116,21 +1117,44 @@ fn build_body<const D: usize>(
             None => Vector::<D>::zeros(),
         };
         let mut points = fill_shape(&shape, spacing, &positions);
-        if let Some(clip) = &s.clip {
-            let span = clip.span();
-            let min = ctx.components::<D>(&clip.get_ref().min, &span, &sfield("clip.min"))?;
-            let max = ctx.components::<D>(&clip.get_ref().max, &span, &sfield("clip.max"))?;
-            points.retain(|x| (0..D).all(|k| x[k] >= min[k] && x[k] <= max[k]));
+        let clip = match &s.clip {
+            Some(clip) => {
+                let span = clip.span();
+                let min = ctx.components::<D>(&clip.get_ref().min, &span, &sfield("clip.min"))?;
+                let max = ctx.components::<D>(&clip.get_ref().max, &span, &sfield("clip.max"))?;
+                Some(Shape::Box { min, max })
+            }
+            None => None,
+        };
+        if let Some(clip) = &clip {
+            points.retain(|x| clip.contains(x));
         }
         if points.is_empty() {
             return Err(ctx.error(&span, &sfield("shape"), format!("contains no particle at spacing {spacing} (is it smaller than the spacing, or fully inside an earlier shape?)")));
         }
+        let fill = Fill {
+            shape,
+            clip,
+            velocity,
+            gradient,
+            origin,
+        };
         for x in points {
-            velocities.push(velocity + gradient * (x - origin));
+            velocities.push(fill.velocity_at(&x));
             positions.push(x);
         }
+        fills.push(fill);
     }
-    apply_cuts(ctx, b, &mut positions, &mut velocities)?;
+    let mut volumes = vec![spacing.powi(D as i32); positions.len()];
+    apply_cuts(
+        ctx,
+        b,
+        spacing,
+        &fills,
+        &mut positions,
+        &mut velocities,
+        &mut volumes,
+    )?;
     let initial_stress = match &b.initial_stress {
         Some(t) => Some(initial_stress::<D>(
             ctx,
@@ -1140,12 +1164,11 @@ fn build_body<const D: usize>(
         )?),
         None => None,
     };
-    let volume = spacing.powi(D as i32);
     Ok(BodyDescription {
         name: name.clone(),
         material,
         spacing,
-        volumes: vec![volume; positions.len()],
+        volumes,
         positions,
         velocities,
         initial_stress,
@@ -1200,17 +1223,66 @@ fn initial_stress<const D: usize>(
     Ok(tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz))
 }
 
+/// One filled shape of a body: the region its particles came from (its shape, within its
+/// `clip`) and the initial velocity field v = v0 + L (X − X_origin) they start with.
+struct Fill<const D: usize> {
+    shape: Shape<D>,
+    clip: Option<Shape<D>>,
+    velocity: Vector<D>,
+    gradient: Tensor<D>,
+    origin: Vector<D>,
+}
+
+impl<const D: usize> Fill<D> {
+    /// Whether the reference point `x` lies in this shape and its clip box.
+    fn covers(&self, x: &Vector<D>) -> bool {
+        self.shape.contains(x) && self.clip.as_ref().is_none_or(|c| c.contains(x))
+    }
+
+    /// Initial velocity at `x`.
+    fn velocity_at(&self, x: &Vector<D>) -> Vector<D> {
+        self.velocity + self.gradient * (x - self.origin)
+    }
+}
+
+/// A disc cut whose rim is followed by `rings` rings of particles ([`hole_rings`]).
+struct RingedCut<const D: usize> {
+    cut: usize,
+    centre: Vector<D>,
+    radius: f64,
+    rings: usize,
+}
+
+impl<const D: usize> RingedCut<D> {
+    /// Outer radius of the ring zone: the lattice points inside it are replaced by the rings.
+    fn outer(&self, spacing: f64) -> f64 {
+        self.radius + self.rings as f64 * spacing
+    }
+}
+
+/// Largest `rings` a cut accepts (a guard against typos that would fill memory).
+const MAX_RINGS: i64 = 1000;
+
 /// Removes the lattice points of every `[[body.cut]]` from a filled body (holes, notches):
-/// a point goes when it lies in the cut's shape ([`Shape::contains`]). A cut that removes
-/// nothing, or cuts that leave the body empty, are errors naming the body.
+/// a point goes when it lies in the cut's shape ([`Shape::contains`]). A disc cut with
+/// `rings` also replaces the lattice within `rings` spacings of its rim by concentric rings
+/// of particles ([`hole_rings`]); the particles within two spacings of such a zone then take
+/// their Voronoi cell in the body as reference volume ([`sampled_cell_volumes`]), so the
+/// volumes still add up to the body's area. A cut that removes nothing, rings that are not
+/// on a 2D disc or that overlap, and cuts that leave the body empty are errors naming the cut.
 fn apply_cuts<const D: usize>(
     ctx: &Context<'_>,
     b: &BodyTable,
+    spacing: f64,
+    fills: &[Fill<D>],
     positions: &mut Vec<Vector<D>>,
     velocities: &mut Vec<Vector<D>>,
+    volumes: &mut Vec<f64>,
 ) -> Result<(), SceneError> {
     let name = b.name.get_ref();
     let mut keep = vec![true; positions.len()];
+    let mut cuts: Vec<Shape<D>> = Vec::new();
+    let mut ringed: Vec<RingedCut<D>> = Vec::new();
     for (k, cut) in b.cut.iter().enumerate() {
         let field = |key: &str| format!("body[{name}].cut[{k}].{key}");
         if cut.box_.is_none()
@@ -1246,19 +1318,108 @@ fn apply_cuts<const D: usize>(
                 format!("removes no particle of body `{name}` (is it outside the body, between lattice points, or inside an earlier cut?)"),
             ));
         }
+        if let Some(rings) = &cut.rings {
+            let count = *rings.get_ref();
+            if !(0..=MAX_RINGS).contains(&count) {
+                return Err(ctx.error(
+                    &rings.span(),
+                    &field("rings"),
+                    format!("must be a whole number from 0 to {MAX_RINGS}, got {count}"),
+                ));
+            }
+            match (&shape, D) {
+                (_, _) if count == 0 => {}
+                (Shape::Ball { centre, radius }, 2) => {
+                    let this = RingedCut {
+                        cut: k,
+                        centre: *centre,
+                        radius: *radius,
+                        rings: count as usize,
+                    };
+                    if let Some(other) = ringed.iter().find(|o| {
+                        (o.centre - this.centre).norm() < o.outer(spacing) + this.outer(spacing)
+                    }) {
+                        return Err(ctx.error(
+                            &rings.span(),
+                            &field("rings"),
+                            format!("the ring zone of this cut (radius + rings x spacing) overlaps that of body[{name}].cut[{}]; use fewer rings or move the holes apart", other.cut),
+                        ));
+                    }
+                    let outer = this.outer(spacing);
+                    for (x, kept) in positions.iter().zip(keep.iter_mut()) {
+                        if (x - this.centre).norm() < outer {
+                            *kept = false;
+                        }
+                    }
+                    ringed.push(this);
+                }
+                _ => return Err(ctx.error(
+                    &rings.span(),
+                    &field("rings"),
+                    "rings follow the rim of a round hole: they need a `disc` cut in a 2D scene"
+                        .into(),
+                )),
+            }
+        }
+        cuts.push(shape);
     }
-    if !keep.iter().any(|k| *k) {
+    keep_particles(&keep, positions, velocities, volumes);
+    let in_body =
+        |x: &Vector<D>| fills.iter().any(|f| f.covers(x)) && !cuts.iter().any(|c| c.contains(x));
+    for ring in &ringed {
+        let centre = Vector::<2>::new(ring.centre[0], ring.centre[1]);
+        for p in hole_rings(&centre, ring.radius, ring.rings, spacing) {
+            let x = Vector::<D>::from_fn(|k, _| p[k]);
+            if !in_body(&x) {
+                continue;
+            }
+            if let Some(fill) = fills.iter().find(|f| f.covers(&x)) {
+                velocities.push(fill.velocity_at(&x));
+                positions.push(x);
+                volumes.push(0.0);
+            }
+        }
+    }
+    if !ringed.is_empty() {
+        let near_rings: Vec<usize> = (0..positions.len())
+            .filter(|&i| {
+                ringed
+                    .iter()
+                    .any(|r| (positions[i] - r.centre).norm() < r.outer(spacing) + 2.0 * spacing)
+            })
+            .collect();
+        let cells = sampled_cell_volumes(positions, &near_rings, spacing, in_body);
+        for (&i, v) in near_rings.iter().zip(cells) {
+            volumes[i] = v;
+        }
+        // A particle without any sample of the body nearest to it has no share of the body
+        // (a ring particle on its very edge): it goes rather than carry a zero mass.
+        let keep: Vec<bool> = volumes.iter().map(|v| *v > 0.0).collect();
+        keep_particles(&keep, positions, velocities, volumes);
+    }
+    if positions.is_empty() {
         return Err(ctx.error(
             &b.name.span(),
             &format!("body[{name}].cut"),
             format!("the cuts remove every particle of body `{name}`"),
         ));
     }
+    Ok(())
+}
+
+/// Keeps the particles whose flag in `keep` is set, in every per-particle list.
+fn keep_particles<const D: usize>(
+    keep: &[bool],
+    positions: &mut Vec<Vector<D>>,
+    velocities: &mut Vec<Vector<D>>,
+    volumes: &mut Vec<f64>,
+) {
     let mut flags = keep.iter();
     positions.retain(|_| *flags.next().expect("one flag per particle"));
     let mut flags = keep.iter();
     velocities.retain(|_| *flags.next().expect("one flag per particle"));
-    Ok(())
+    let mut flags = keep.iter();
+    volumes.retain(|_| *flags.next().expect("one flag per particle"));
 }
 
 fn shape_of<const D: usize>(

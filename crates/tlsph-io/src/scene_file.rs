@@ -279,6 +279,8 @@ pub(crate) struct CutTable {
     pub cylinder: Option<Spanned<CylinderShape>>,
     pub sphere: Option<Spanned<RoundShape>>,
     pub disc: Option<Spanned<RoundShape>>,
+    /// Rings of particles that follow the rim of a disc cut (2D), replacing the lattice there.
+    pub rings: Option<Spanned<i64>>,
 }
 
 /// One shape of a body with its own initial velocity field.

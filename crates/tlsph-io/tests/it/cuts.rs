@@ -261,3 +261,126 @@ fn a_boundary_ramp_is_read_with_its_shape_and_checked_with_field_and_line() {
     let e = error_of(&text);
     assert_eq!(e.field, "boundary[middle-row].ramp_time", "{e}");
 }
+
+/// The F-A1 plate with three rings of particles around its hole.
+fn ringed_plate() -> String {
+    PLATE_WITH_HOLE.replace("radius = 10.0 }", "radius = 10.0 }\nrings = 3")
+}
+
+#[test]
+fn rings_replace_the_stair_step_rim_and_keep_the_plate_area() {
+    let model = plate(&ringed_plate());
+    let body = &model.bodies[0];
+    let centre = tlsph_math::Vector::<2>::new(40.0, 40.0);
+    let radius_of = |x: &tlsph_math::Vector<2>| (x - centre).norm();
+    // Rings at r = 10.5, 11.5, 12.5 holding the even counts nearest 2πr: 66, 72, 78.
+    for (r, count) in [(10.5, 66), (11.5, 72), (12.5, 78)] {
+        let on_ring = body
+            .positions
+            .iter()
+            .filter(|x| (radius_of(x) - r).abs() < 1e-9)
+            .count();
+        assert_eq!(on_ring, count, "ring r = {r}");
+    }
+    // Beyond the ring zone (r ≥ R + 3Δx = 13) the lattice is untouched, and nothing else is left.
+    let lattice = (0..80)
+        .flat_map(|i| (0..80).map(move |j| (i as f64 + 0.5, j as f64 + 0.5)))
+        .filter(|&(x, y)| (x - 40.0f64).hypot(y - 40.0) >= 13.0)
+        .count();
+    assert_eq!(body.positions.len(), lattice + 66 + 72 + 78);
+    assert_eq!(body.velocities.len(), body.positions.len());
+    assert_eq!(body.volumes.len(), body.positions.len());
+    // The volumes are Voronoi cells in the plate: they add up to its area, sampled at Δx/32
+    // (the curved rim costs 5e-7 of the area here); lattice cells far from the
+    // rings keep Δx² exactly, and no cell is far from Δx².
+    let area = 80.0 * 80.0 - std::f64::consts::PI * 100.0;
+    let total: f64 = body.volumes.iter().sum();
+    assert!((total / area - 1.0).abs() < 1e-5, "{total} vs {area}");
+    for (x, v) in body.positions.iter().zip(&body.volumes) {
+        assert!((0.7..1.3).contains(v), "volume {v} at {x:?}");
+        if radius_of(x) > 16.0 {
+            assert_eq!(*v, 1.0, "lattice particle at {x:?}");
+        }
+    }
+    // Rings and lattice meet without close pairs, and the body is symmetric about the hole's
+    // axes as the plain lattice is.
+    let closest = body
+        .positions
+        .iter()
+        .enumerate()
+        .flat_map(|(i, a)| body.positions[..i].iter().map(move |b| (a - b).norm()))
+        .fold(f64::INFINITY, f64::min);
+    assert!(closest > 0.7, "closest pair {closest}");
+    for x in &body.positions {
+        for mirror in [
+            tlsph_math::Vector::<2>::new(80.0 - x[0], x[1]),
+            tlsph_math::Vector::<2>::new(x[0], 80.0 - x[1]),
+        ] {
+            assert!(
+                body.positions.iter().any(|y| (y - mirror).norm() < 1e-9),
+                "no mirror image of {x:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn rings_zero_is_the_plain_lattice_and_ring_particles_take_their_shape_velocity() {
+    let plain = plate(PLATE_WITH_HOLE);
+    let zero = plate(&PLATE_WITH_HOLE.replace("radius = 10.0 }", "radius = 10.0 }\nrings = 0"));
+    assert_eq!(plain.bodies[0].positions, zero.bodies[0].positions);
+    assert_eq!(plain.bodies[0].volumes, zero.bodies[0].volumes);
+    // A spinning plate: v = L (X − X_c) holds for ring particles as for lattice ones.
+    let text = ringed_plate().replace(
+        "box = { min = [0.0, 0.0], max = [80.0, 80.0] }",
+        "box = { min = [0.0, 0.0], max = [80.0, 80.0] }\nvelocity_gradient = [[0.0, -0.01], [0.01, 0.0]]\nvelocity_origin = [40.0, 40.0]",
+    );
+    let model = plate(&text);
+    let body = &model.bodies[0];
+    for (x, v) in body.positions.iter().zip(&body.velocities) {
+        let expected = tlsph_math::Vector::<2>::new(-0.01 * (x[1] - 40.0), 0.01 * (x[0] - 40.0));
+        assert!((v - expected).norm() < 1e-15, "{x:?}: {v:?}");
+    }
+}
+
+#[test]
+fn ring_zones_are_clipped_to_the_body() {
+    // A hole 2 spacings from the plate's left edge: ring particles outside the plate are not
+    // made, and the volumes still add up to the plate's area.
+    let text = ringed_plate().replace("centre = [40.0, 40.0]", "centre = [12.0, 40.0]");
+    let body = &plate(&text).bodies[0];
+    assert!(body.positions.iter().all(|x| x[0] > 0.0
+        && x[0] < 80.0
+        && (x - tlsph_math::Vector::<2>::new(12.0, 40.0)).norm() > 10.0));
+    let area = 80.0 * 80.0 - std::f64::consts::PI * 100.0;
+    let total: f64 = body.volumes.iter().sum();
+    assert!((total / area - 1.0).abs() < 1e-5, "{total} vs {area}");
+    assert!(body.volumes.iter().all(|v| *v > 0.0));
+}
+
+#[test]
+fn wrong_rings_name_the_field_and_line() {
+    let on_box = PLATE_WITH_HOLE.replace(
+        "disc = { centre = [40.0, 40.0], radius = 10.0 }",
+        "box = { min = [30.0, 30.0], max = [50.0, 50.0] }\nrings = 2",
+    );
+    let e = error_of(&on_box);
+    assert_eq!(e.field, "body[plate].cut[0].rings");
+    assert_eq!(e.line, Some(line_of(&on_box, "rings = 2")));
+    assert!(e.message.contains("need a `disc` cut in a 2D scene"), "{e}");
+    let negative = PLATE_WITH_HOLE.replace("radius = 10.0 }", "radius = 10.0 }\nrings = -1");
+    let e = error_of(&negative);
+    assert_eq!(e.field, "body[plate].cut[0].rings");
+    assert!(e.message.contains("whole number from 0"), "{e}");
+    // Two holes whose ring zones (R + 3Δx = 13) overlap: centres 24 apart.
+    let overlapping = ringed_plate().replace(
+        "[[boundary]]\nname = \"top\"",
+        "[[body.cut]]\ndisc = { centre = [64.0, 40.0], radius = 10.0 }\nrings = 3\n\n[[boundary]]\nname = \"top\"",
+    );
+    let e = error_of(&overlapping);
+    assert_eq!(e.field, "body[plate].cut[1].rings");
+    assert!(
+        e.message.contains("overlaps that of body[plate].cut[0]"),
+        "{e}"
+    );
+}
