@@ -117,7 +117,12 @@ fn r_p3_gradient_approximation_table() {
 
 #[test]
 fn f_a1_quick_hole_profile() {
-    let run = f_a1::simulate("total-lagrangian-corrected", 1.0, f_a1::QUICK_WINDOW);
+    let run = f_a1::simulate(
+        "total-lagrangian-corrected",
+        1.0,
+        f_a1::QUICK_WINDOW,
+        f_a1::RINGS,
+    );
     let mut csv = String::from("x_over_r,sigma_yy_over_sigma_inf,kirsch\n");
     for &(xi, ratio) in &run.profile {
         writeln!(
@@ -163,11 +168,18 @@ fn f_a12_quick_damaged_area_fraction() {
 
 /// F-A12 flaw-seed sweep (quick tier): first failure time to 1 t.u. (a few steps) and its
 /// distance from the hole point to 0.1 (a twentieth of Δx), cut-through time to 1 (it is a
-/// sample time, every 10), crack centroids to 0.1 and off-band shares to 0.01 (about one
-/// particle of the ~100-particle damaged sets).
+/// sample time, every 2), crack centroids to 0.1 and off-band shares to 0.01 (about one
+/// particle of the ~100-particle damaged sets). The share at the end follows the chaotic
+/// rebound after the cut-through: a change in the last bits of the particle positions can move
+/// it by a particle, so a change there needs a look, not alarm.
 #[test]
 fn f_a12_quick_flaw_seed_sensitivity() {
-    let (outcomes, _) = f_a12::seed_sweep(f_a12::QUICK_SPACING, &f_a12::SWEEP_SEEDS_QUICK, None);
+    let (outcomes, _) = f_a12::seed_sweep(
+        f_a12::QUICK_SPACING,
+        f_a12::RINGS,
+        &f_a12::SWEEP_SEEDS_QUICK,
+        None,
+    );
     let mut csv = String::from(
         "seed,first_failure_time,first_failure_distance,cut_through_time,crack_x_above,crack_x_below,off_band_at_cut,off_band_at_end\n",
     );
