@@ -163,12 +163,16 @@ pub fn hole_rings(centre: &Vector<2>, radius: f64, rings: usize, spacing: f64) -
 pub const VOLUME_SUBSAMPLES: usize = 32;
 
 /// Reference volumes of the particles `targets` as the measure of their Voronoi cells inside
-/// the body: the cells of pitch `spacing` within two spacings of a target are sampled at pitch
-/// `spacing` / [`VOLUME_SUBSAMPLES`] along each axis, and each sample point for which `inside` holds counts
-/// for the particle of `positions` nearest to it. The volumes of all particles of a body then
-/// add up to the body's measure (up to the sampling of its curved edges), whatever the
-/// arrangement of the particles, which is what an irregular packing such as [`hole_rings`]
-/// needs; a sample farther than two spacings from every particle counts for none.
+/// the body. The cells of pitch `spacing` within two spacings of a target are sampled at pitch
+/// `spacing` / [`VOLUME_SUBSAMPLES`] along each axis; each sample point for which `inside`
+/// holds counts for the particle of `positions` nearest to it (ties to the lower index), and
+/// a sample farther than two spacings from every particle counts for none. The volumes of all
+/// particles of a body then add up to the body's measure (up to the sampling of its curved
+/// edges), whatever the arrangement of the particles, which is what an irregular packing such
+/// as [`hole_rings`] needs. Cost: 32^D samples per cell near a target; in 2D about 20 ms per
+/// hundred targets (release build: 0.08 s for the rings of the F-A1 plate, 1.1 s for a hole of
+/// radius 200Δx). In 3D a cell holds 32 times the samples and a target has 5 times the
+/// cells, so keep 3D target sets small.
 pub fn sampled_cell_volumes<const D: usize>(
     positions: &[Vector<D>],
     targets: &[usize],
