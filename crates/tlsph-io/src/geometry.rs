@@ -197,24 +197,14 @@ pub fn sampled_cell_volumes<const D: usize>(
     let cell_of = |x: &Vector<D>| -> [i64; D] {
         std::array::from_fn(|k| ((x[k] - origin[k]) / spacing).floor() as i64)
     };
+    let offsets = lattice(&[5; D], |idx| {
+        Vector::<D>::from_fn(|k, _| idx[k] as f64 - 2.0)
+    });
     let mut cells = std::collections::BTreeSet::new();
     for &i in targets {
         let c = cell_of(&positions[i]);
-        let mut off = [-2i64; D];
-        loop {
-            cells.insert(std::array::from_fn::<i64, D, _>(|k| c[k] + off[k]));
-            let mut k = 0;
-            while k < D {
-                off[k] += 1;
-                if off[k] <= 2 {
-                    break;
-                }
-                off[k] = -2;
-                k += 1;
-            }
-            if k == D {
-                break;
-            }
+        for off in &offsets {
+            cells.insert(std::array::from_fn::<i64, D, _>(|k| c[k] + off[k] as i64));
         }
     }
     let n = VOLUME_SUBSAMPLES;

@@ -1370,9 +1370,10 @@ fn apply_cuts<const D: usize>(
         let centre = Vector::<2>::new(ring.centre[0], ring.centre[1]);
         for p in hole_rings(&centre, ring.radius, ring.rings, spacing) {
             let x = Vector::<D>::from_fn(|k, _| p[k]);
-            if !in_body(&x) {
+            if cuts.iter().any(|c| c.contains(&x)) {
                 continue;
             }
+            // Outside every shape of the body (a hole near its edge): not made.
             if let Some(fill) = fills.iter().find(|f| f.covers(&x)) {
                 velocities.push(fill.velocity_at(&x));
                 positions.push(x);

@@ -104,7 +104,15 @@ pub fn simulate(dx: f64) -> DamageRun {
         },
     ];
     let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).expect("F-A13 parameters are valid");
-    let mut model = fuller::model(positions, dx, DamageModel::Peerlings(law), loads, END_TIME);
+    let volumes = vec![dx * dx; positions.len()];
+    let mut model = fuller::model(
+        positions,
+        volumes,
+        dx,
+        DamageModel::Peerlings(law),
+        loads,
+        END_TIME,
+    );
     model.effects.pairwise_viscosity = Some(fuller::DAMAGE_VISCOSITY);
     fuller::run(model, SAMPLE_INTERVAL, &[first_transit_time()])
 }

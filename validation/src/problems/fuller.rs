@@ -44,9 +44,11 @@ pub struct Loaded {
     pub velocity: f64,
 }
 
-/// The M-F model with `damage` on one body of lattice points `positions` (spacing `dx`).
+/// The M-F model with `damage` on one body of particles at `positions` with reference
+/// `volumes` (lattice spacing `dx`, which also sets h).
 pub fn model(
     positions: Vec<Vector<2>>,
+    volumes: Vec<f64>,
     dx: f64,
     damage: DamageModel,
     loads: Vec<Loaded>,
@@ -72,7 +74,7 @@ pub fn model(
             name: "specimen".into(),
             material: 0,
             spacing: dx,
-            volumes: vec![dx * dx; n],
+            volumes,
             velocities: vec![Vector::<2>::zeros(); n],
             initial_stress: None,
             positions,
