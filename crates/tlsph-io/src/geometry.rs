@@ -172,7 +172,8 @@ pub const VOLUME_SUBSAMPLES: usize = 32;
 /// as [`hole_rings`] needs. Cost: 32^D samples per cell near a target; in 2D about 20 ms per
 /// hundred targets (release build: 0.08 s for the rings of the F-A1 plate, 1.1 s for a hole of
 /// radius 200Δx). In 3D a cell holds 32 times the samples and a target has 5 times the
-/// cells, so keep 3D target sets small.
+/// cells, so keep 3D target sets small (the scene reader measures the rings of a drilled
+/// hole layer by layer in 2D instead).
 pub fn sampled_cell_volumes<const D: usize>(
     positions: &[Vector<D>],
     targets: &[usize],

@@ -1245,12 +1245,18 @@ impl<const D: usize> Fill<D> {
     }
 }
 
-/// A disc cut whose rim is followed by `rings` rings of particles ([`hole_rings`]).
+/// A round cut whose rim is followed by `rings` rings of particles ([`hole_rings`]): a disc
+/// in 2D, or a cylinder in 3D, whose rings are laid in every lattice layer it passes through.
 struct RingedCut<const D: usize> {
     cut: usize,
+    /// Disc centre or cylinder base.
     centre: Vector<D>,
     radius: f64,
     rings: usize,
+    /// The two axes of the plane the rings lie in.
+    plane: [usize; 2],
+    /// A cylinder's axis and the closed range [lo, hi] of that coordinate it spans.
+    axial: Option<(usize, f64, f64)>,
 }
 
 impl<const D: usize> RingedCut<D> {
@@ -1258,18 +1264,79 @@ impl<const D: usize> RingedCut<D> {
     fn outer(&self, spacing: f64) -> f64 {
         self.radius + self.rings as f64 * spacing
     }
+
+    /// Whether `x` lies within `reach` of the hole's axis (2D: its centre) and, for a
+    /// cylinder, within its extent along the axis.
+    fn within(&self, x: &Vector<D>, reach: f64) -> bool {
+        let [a, b] = self.plane;
+        let radial = (x[a] - self.centre[a]).hypot(x[b] - self.centre[b]);
+        radial < reach
+            && self
+                .axial
+                .is_none_or(|(k, lo, hi)| (lo..=hi).contains(&x[k]))
+    }
+
+    /// Whether the ring zones of `self` and `other` could share a particle or a neighbour of
+    /// one: for holes along the same axis (or two discs), the in-plane centre distance is
+    /// below the sum of the outer radii and the axial extents overlap; for cylinders along
+    /// different axes, the boxes around their zones widened by two spacings meet.
+    fn overlaps(&self, other: &Self, spacing: f64) -> bool {
+        let [a, b] = self.plane;
+        let axis = |r: &Self| r.axial.map(|(k, _, _)| k);
+        if axis(self) == axis(other) {
+            let apart = (self.centre[a] - other.centre[a]).hypot(self.centre[b] - other.centre[b]);
+            let along = match (self.axial, other.axial) {
+                (Some((_, lo, hi)), Some((_, lo2, hi2))) => lo <= hi2 && lo2 <= hi,
+                _ => true,
+            };
+            return along && apart < self.outer(spacing) + other.outer(spacing);
+        }
+        let (lo1, hi1) = self.zone_box(spacing);
+        let (lo2, hi2) = other.zone_box(spacing);
+        (0..D).all(|k| lo1[k] <= hi2[k] && lo2[k] <= hi1[k])
+    }
+
+    /// Corners of the box around the ring zone, widened by two spacings.
+    fn zone_box(&self, spacing: f64) -> (Vector<D>, Vector<D>) {
+        let reach = self.outer(spacing) + 2.0 * spacing;
+        let mut lo = self.centre.add_scalar(-reach);
+        let mut hi = self.centre.add_scalar(reach);
+        if let Some((k, a, b)) = self.axial {
+            lo[k] = a - 2.0 * spacing;
+            hi[k] = b + 2.0 * spacing;
+        }
+        (lo, hi)
+    }
+
+    /// The ring particles ([`hole_rings`]) in the plane through `x` (a point of a lattice
+    /// layer the hole passes through; 2D: any point).
+    fn rings_through(&self, x: &Vector<D>, spacing: f64) -> Vec<Vector<D>> {
+        let [a, b] = self.plane;
+        let centre = Vector::<2>::new(self.centre[a], self.centre[b]);
+        hole_rings(&centre, self.radius, self.rings, spacing)
+            .into_iter()
+            .map(|p| {
+                let mut y = *x;
+                y[a] = p[0];
+                y[b] = p[1];
+                y
+            })
+            .collect()
+    }
 }
 
 /// Largest `rings` a cut accepts (a guard against typos that would fill memory).
 const MAX_RINGS: i64 = 1000;
 
 /// Removes the lattice points of every `[[body.cut]]` from a filled body (holes, notches):
-/// a point goes when it lies in the cut's shape ([`Shape::contains`]). A disc cut with
-/// `rings` also replaces the lattice within `rings` spacings of its rim by concentric rings
-/// of particles ([`hole_rings`]); the particles within two spacings of such a zone then take
-/// their Voronoi cell in the body as reference volume ([`sampled_cell_volumes`]), so the
-/// volumes still add up to the body's area. A cut that removes nothing, rings that are not
-/// on a 2D disc or that overlap, and cuts that leave the body empty are errors naming the cut.
+/// a point goes when it lies in the cut's shape ([`Shape::contains`]). A disc cut (2D) or a
+/// cylinder cut (3D) with `rings` also replaces the lattice within `rings` spacings of its rim
+/// by concentric rings of particles ([`hole_rings`]), in 3D in every lattice layer along the
+/// cylinder's axis that the cut passes through; the particles within two spacings of such a
+/// zone then take their Voronoi cell in the body (in 3D: in their layer, times the spacing) as
+/// reference volume ([`ring_zone_volumes`]), so the volumes still add up to the body's
+/// measure. A cut that removes nothing, rings on another shape or that overlap, and cuts that
+/// leave the body empty are errors naming the cut.
 fn apply_cuts<const D: usize>(
     ctx: &Context<'_>,
     b: &BodyTable,
@@ -1283,6 +1350,8 @@ fn apply_cuts<const D: usize>(
     let mut keep = vec![true; positions.len()];
     let mut cuts: Vec<Shape<D>> = Vec::new();
     let mut ringed: Vec<RingedCut<D>> = Vec::new();
+    // One lattice point of each layer a ringed cut passes through (2D: one point).
+    let mut layer_points: Vec<(usize, Vector<D>)> = Vec::new();
     for (k, cut) in b.cut.iter().enumerate() {
         let field = |key: &str| format!("body[{name}].cut[{k}].{key}");
         if cut.box_.is_none()
@@ -1327,38 +1396,63 @@ fn apply_cuts<const D: usize>(
                     format!("must be a whole number from 0 to {MAX_RINGS}, got {count}"),
                 ));
             }
-            match (&shape, D) {
-                (_, _) if count == 0 => {}
-                (Shape::Ball { centre, radius }, 2) => {
-                    let this = RingedCut {
+            let this = match (&shape, D) {
+                (_, _) if count == 0 => None,
+                (Shape::Ball { centre, radius }, 2) => Some(RingedCut {
+                    cut: k,
+                    centre: *centre,
+                    radius: *radius,
+                    rings: count as usize,
+                    plane: [0, 1],
+                    axial: None,
+                }),
+                (
+                    Shape::Cylinder {
+                        base,
+                        axis,
+                        radius,
+                        length,
+                    },
+                    3,
+                ) => {
+                    let others: Vec<usize> = (0..3).filter(|j| j != axis).collect();
+                    Some(RingedCut {
                         cut: k,
-                        centre: *centre,
+                        centre: *base,
                         radius: *radius,
                         rings: count as usize,
-                    };
-                    if let Some(other) = ringed.iter().find(|o| {
-                        (o.centre - this.centre).norm() < o.outer(spacing) + this.outer(spacing)
-                    }) {
-                        return Err(ctx.error(
-                            &rings.span(),
-                            &field("rings"),
-                            format!("the ring zone of this cut (radius + rings x spacing) overlaps that of body[{name}].cut[{}]; use fewer rings or move the holes apart", other.cut),
-                        ));
-                    }
-                    let outer = this.outer(spacing);
-                    for (x, kept) in positions.iter().zip(keep.iter_mut()) {
-                        if (x - this.centre).norm() < outer {
-                            *kept = false;
-                        }
-                    }
-                    ringed.push(this);
+                        plane: [others[0], others[1]],
+                        axial: Some((*axis, base[*axis], base[*axis] + length)),
+                    })
                 }
                 _ => return Err(ctx.error(
                     &rings.span(),
                     &field("rings"),
-                    "rings follow the rim of a round hole: they need a `disc` cut in a 2D scene"
+                    "rings follow the rim of a round hole: they need a `disc` cut in a 2D scene or a `cylinder` cut in a 3D one"
                         .into(),
                 )),
+            };
+            if let Some(this) = this {
+                if let Some(other) = ringed.iter().find(|o| o.overlaps(&this, spacing)) {
+                    return Err(ctx.error(
+                        &rings.span(),
+                        &field("rings"),
+                        format!("the ring zone of this cut (radius + rings x spacing) overlaps that of body[{name}].cut[{}]; use fewer rings or move the holes apart", other.cut),
+                    ));
+                }
+                let outer = this.outer(spacing);
+                let mut layers: Vec<Vector<D>> = Vec::new();
+                for (x, kept) in positions.iter().zip(keep.iter_mut()) {
+                    if this.within(x, outer) {
+                        *kept = false;
+                    }
+                    if this.within(x, outer) || shape.contains(x) {
+                        layers.push(*x);
+                    }
+                }
+                let ring = ringed.len();
+                layer_points.extend(distinct_layers(layers, this.axial).map(|x| (ring, x)));
+                ringed.push(this);
             }
         }
         cuts.push(shape);
@@ -1366,10 +1460,8 @@ fn apply_cuts<const D: usize>(
     keep_particles(&keep, positions, velocities, volumes);
     let in_body =
         |x: &Vector<D>| fills.iter().any(|f| f.covers(x)) && !cuts.iter().any(|c| c.contains(x));
-    for ring in &ringed {
-        let centre = Vector::<2>::new(ring.centre[0], ring.centre[1]);
-        for p in hole_rings(&centre, ring.radius, ring.rings, spacing) {
-            let x = Vector::<D>::from_fn(|k, _| p[k]);
+    for (ring, layer) in &layer_points {
+        for x in ringed[*ring].rings_through(layer, spacing) {
             if cuts.iter().any(|c| c.contains(&x)) {
                 continue;
             }
@@ -1382,17 +1474,17 @@ fn apply_cuts<const D: usize>(
         }
     }
     if !ringed.is_empty() {
-        let near_rings: Vec<usize> = (0..positions.len())
-            .filter(|&i| {
-                ringed
-                    .iter()
-                    .any(|r| (positions[i] - r.centre).norm() < r.outer(spacing) + 2.0 * spacing)
-            })
+        let near = |x: &Vector<D>| {
+            ringed
+                .iter()
+                .any(|r| r.within(x, r.outer(spacing) + 2.0 * spacing))
+        };
+        let targets: Vec<usize> = (0..positions.len())
+            .filter(|&i| near(&positions[i]))
             .collect();
-        let cells = sampled_cell_volumes(positions, &near_rings, spacing, in_body);
-        for (&i, v) in near_rings.iter().zip(cells) {
-            volumes[i] = v;
-        }
+        ring_zone_volumes(
+            ctx, b, &ringed, spacing, positions, &targets, &in_body, volumes,
+        )?;
         // A particle without any sample of the body nearest to it has no share of the body
         // (a ring particle on its very edge): it goes rather than carry a zero mass.
         let keep: Vec<bool> = volumes.iter().map(|v| *v > 0.0).collect();
@@ -1404,6 +1496,119 @@ fn apply_cuts<const D: usize>(
             &format!("body[{name}].cut"),
             format!("the cuts remove every particle of body `{name}`"),
         ));
+    }
+    Ok(())
+}
+
+/// One point per distinct layer of `points` along `axial`'s axis (coordinates within 1e-9 of
+/// each other are one layer); without an axis (2D), the first point.
+fn distinct_layers<const D: usize>(
+    mut points: Vec<Vector<D>>,
+    axial: Option<(usize, f64, f64)>,
+) -> impl Iterator<Item = Vector<D>> {
+    match axial {
+        Some((k, _, _)) => {
+            points.sort_by(|a, b| a[k].total_cmp(&b[k]));
+            points.dedup_by(|a, b| (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0));
+        }
+        None => points.truncate(1),
+    }
+    points.into_iter()
+}
+
+/// Sets the reference volumes of the particles `targets` (those within two spacings of a ring
+/// zone) to their Voronoi cells in the body ([`sampled_cell_volumes`]). In 2D the cells are
+/// those of the whole body. In 3D the rings of a cylinder lie in the lattice layers along its
+/// axis, and each layer is measured on its own: the area of a particle's cell among the
+/// particles of its layer, times the spacing. That is the particle's 3D Voronoi cell whenever
+/// the layers above and below are laid out alike (a through hole in a plate), costs a 2D
+/// sampling per layer instead of a 3D one (32 times fewer samples per cell, 5 times fewer
+/// cells), and adds up to the midpoint rule of the body's volume over the layers. Layers of a
+/// target set that are less than a spacing apart (shapes of the body whose lattices are
+/// shifted along the axis) cannot be measured so and are an error at the cut's `rings`.
+#[allow(clippy::too_many_arguments)]
+fn ring_zone_volumes<const D: usize>(
+    ctx: &Context<'_>,
+    b: &BodyTable,
+    ringed: &[RingedCut<D>],
+    spacing: f64,
+    positions: &[Vector<D>],
+    targets: &[usize],
+    in_body: &dyn Fn(&Vector<D>) -> bool,
+    volumes: &mut [f64],
+) -> Result<(), SceneError> {
+    if D != 3 {
+        let cells = sampled_cell_volumes(positions, targets, spacing, in_body);
+        for (&i, v) in targets.iter().zip(cells) {
+            volumes[i] = v;
+        }
+        return Ok(());
+    }
+    // Rings of several cylinders along different axes never share a target (their zones are
+    // two spacings apart, `RingedCut::overlaps`), so each target is measured in the plane of
+    // the cut it is near.
+    for (r, ring) in ringed.iter().enumerate() {
+        let Some((axis, _, _)) = ring.axial else {
+            continue;
+        };
+        let reach = ring.outer(spacing) + 2.0 * spacing;
+        let mine: Vec<usize> = targets
+            .iter()
+            .copied()
+            .filter(|&i| ring.within(&positions[i], reach))
+            .filter(|&i| {
+                !ringed[..r]
+                    .iter()
+                    .any(|o| o.within(&positions[i], o.outer(spacing) + 2.0 * spacing))
+            })
+            .collect();
+        let mut layers: Vec<f64> = mine.iter().map(|&i| positions[i][axis]).collect();
+        layers.sort_by(f64::total_cmp);
+        layers.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
+        if let Some(w) = layers
+            .windows(2)
+            .find(|w| w[1] - w[0] < (1.0 - 1e-9) * spacing)
+        {
+            let rings = b.cut[ring.cut]
+                .rings
+                .as_ref()
+                .expect("a ringed cut has `rings`");
+            return Err(ctx.error(
+                &rings.span(),
+                &format!("body[{}].cut[{}].rings", b.name.get_ref(), ring.cut),
+                format!(
+                    "rings in 3D need the body's lattice layers along the cylinder's axis to be one spacing apart, but near this hole there are layers at {} and {} (shapes of the body whose lattices are shifted against each other)",
+                    w[0], w[1]
+                ),
+            ));
+        }
+        let [a, c] = ring.plane;
+        for s in layers {
+            let same_layer = |x: &Vector<D>| (x[axis] - s).abs() <= 1e-9 * s.abs().max(1.0);
+            let members: Vec<usize> = (0..positions.len())
+                .filter(|&i| same_layer(&positions[i]))
+                .collect();
+            let flat: Vec<Vector<2>> = members
+                .iter()
+                .map(|&i| Vector::<2>::new(positions[i][a], positions[i][c]))
+                .collect();
+            let local: Vec<usize> = members
+                .iter()
+                .enumerate()
+                .filter(|(_, &i)| mine.binary_search(&i).is_ok())
+                .map(|(j, _)| j)
+                .collect();
+            let lift = |p: &Vector<2>| {
+                let mut x = positions[members[0]];
+                x[a] = p[0];
+                x[c] = p[1];
+                x
+            };
+            let cells = sampled_cell_volumes(&flat, &local, spacing, |p| in_body(&lift(p)));
+            for (&j, v) in local.iter().zip(cells) {
+                volumes[members[j]] = v * spacing;
+            }
+        }
     }
     Ok(())
 }

@@ -454,3 +454,167 @@ fn a_ringed_plate_breathes_as_stably_as_the_plain_lattice() {
     assert!(plain_distortion < 0.06, "plain lattice {plain_distortion}");
     assert!(distortion < 0.06, "ringed plate {distortion}");
 }
+
+/// A 3D plate 40 x 40 x 3 (Δx = 1) drilled through along `axis` by a cylinder of radius 5
+/// about the plate's centre line, with three rings; the plate's thin direction is `axis`.
+fn drilled_plate(axis: &str, rings: usize) -> String {
+    let (size, base) = match axis {
+        "x" => ("[3.0, 40.0, 40.0]", "[-1.0, 20.0, 20.0]"),
+        "y" => ("[40.0, 3.0, 40.0]", "[20.0, -1.0, 20.0]"),
+        _ => ("[40.0, 40.0, 3.0]", "[20.0, 20.0, -1.0]"),
+    };
+    format!(
+        r#"
+[simulation]
+dimension = 3
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.5
+cfl = 0.3
+end_time = 1.0
+
+[[material]]
+name = "m"
+model = "linear-elastic"
+density = 1.0
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+
+[[body]]
+name = "plate"
+material = "m"
+spacing = 1.0
+box = {{ min = [0.0, 0.0, 0.0], max = {size} }}
+
+[[body.cut]]
+cylinder = {{ base = {base}, axis = "{axis}", radius = 5.0, length = 5.0 }}
+rings = {rings}
+"#
+    )
+}
+
+fn body_3d(text: &str) -> tlsph_solver::BodyDescription<3> {
+    match parse_scene(text, "drilled.toml").unwrap().model {
+        DimensionModel::Three(m) => m.bodies.into_iter().next().unwrap(),
+        _ => panic!("3D scene"),
+    }
+}
+
+#[test]
+fn rings_drill_a_3d_plate_as_the_2d_plate_extruded() {
+    // The same hole in the 2D plate 40 x 40: every layer of the drilled 3D plate must hold
+    // exactly its particles, each with its area times the layer thickness as volume, whichever
+    // axis the hole runs along.
+    let flat_text = PLATE_WITH_HOLE
+        .replace("max = [80.0, 80.0]", "max = [40.0, 40.0]")
+        .replace(
+            "centre = [40.0, 40.0], radius = 10.0 }",
+            "centre = [20.0, 20.0], radius = 5.0 }\nrings = 3",
+        )
+        .replace(
+            "min = [-1.0, 79.0], max = [81.0, 81.0]",
+            "min = [-1.0, 39.0], max = [41.0, 41.0]",
+        )
+        .replace(
+            "min = [-1.0, 40.2], max = [81.0, 40.8]",
+            "min = [-1.0, 20.2], max = [41.0, 20.8]",
+        );
+    let flat = &plate(&flat_text).bodies[0];
+    for (axis, k) in [("x", 0), ("y", 1), ("z", 2)] {
+        let body = body_3d(&drilled_plate(axis, 3));
+        assert_eq!(
+            body.positions.len(),
+            3 * flat.positions.len(),
+            "axis {axis}"
+        );
+        let plane: Vec<usize> = (0..3).filter(|&j| j != k).collect();
+        for layer in [0.5, 1.5, 2.5] {
+            let mut matched = 0;
+            for (x, v) in body.positions.iter().zip(&body.volumes) {
+                if x[k] != layer {
+                    continue;
+                }
+                let p = tlsph_math::Vector::<2>::new(x[plane[0]], x[plane[1]]);
+                let j = flat
+                    .positions
+                    .iter()
+                    .position(|q| (q - p).norm() < 1e-12)
+                    .unwrap_or_else(|| panic!("axis {axis}: no 2D particle at {p:?}"));
+                assert!(
+                    (v - flat.volumes[j]).abs() < 1e-12,
+                    "axis {axis}: {v} vs {}",
+                    flat.volumes[j]
+                );
+                matched += 1;
+            }
+            assert_eq!(matched, flat.positions.len(), "axis {axis}, layer {layer}");
+        }
+        // The rim is sampled at Δx/32: each layer's area misses the true one by 0.03 here,
+        // far below one particle's cell (a particle lost or doubled would show).
+        let volume = 3.0 * (1600.0 - std::f64::consts::PI * 25.0);
+        let total: f64 = body.volumes.iter().sum();
+        assert!(
+            (total - volume).abs() < 3.0 * 0.1,
+            "axis {axis}: {total} vs {volume}"
+        );
+    }
+}
+
+#[test]
+fn a_blind_hole_gets_rings_only_in_the_layers_it_passes_through() {
+    // The cylinder starts at z = 1: layers z = 1.5 and 2.5 are drilled and ringed, the
+    // layer z = 0.5 under the hole's floor keeps its whole lattice of Δx³ cells.
+    let text = drilled_plate("z", 3).replace("20.0, 20.0, -1.0", "20.0, 20.0, 1.0");
+    let body = body_3d(&text);
+    let centre = |x: &tlsph_math::Vector<3>| (x[0] - 20.0).hypot(x[1] - 20.0);
+    let floor: Vec<usize> = (0..body.positions.len())
+        .filter(|&i| body.positions[i][2] == 0.5)
+        .collect();
+    assert_eq!(floor.len(), 1600);
+    assert!(floor.iter().all(|&i| body.volumes[i] == 1.0));
+    let on_rings = |z: f64| {
+        body.positions
+            .iter()
+            .filter(|x| x[2] == z && [5.5, 6.5, 7.5].iter().any(|r| (centre(x) - r).abs() < 1e-9))
+            .count()
+    };
+    // Rings at r = 5.5, 6.5, 7.5 hold 34, 40 and 48 particles (even counts nearest 2πr).
+    assert_eq!(on_rings(0.5), 0);
+    assert_eq!(on_rings(1.5), 34 + 40 + 48);
+    assert_eq!(on_rings(2.5), 34 + 40 + 48);
+    // Two drilled layers, each within 0.1 of its area (rim sampled at Δx/32, as above).
+    let volume = 40.0 * 40.0 * 3.0 - std::f64::consts::PI * 25.0 * 2.0;
+    let total: f64 = body.volumes.iter().sum();
+    assert!((total - volume).abs() < 2.0 * 0.1, "{total} vs {volume}");
+}
+
+#[test]
+fn wrong_rings_in_3d_name_the_field_and_line() {
+    let sphere = drilled_plate("z", 2).replace(
+        "cylinder = { base = [20.0, 20.0, -1.0], axis = \"z\", radius = 5.0, length = 5.0 }",
+        "sphere = { centre = [20.0, 20.0, 1.5], radius = 5.0 }",
+    );
+    let e = parse_scene(&sphere, "drilled.toml").expect_err("rings on a sphere");
+    assert_eq!(e.field, "body[plate].cut[0].rings");
+    assert_eq!(e.line, Some(line_of(&sphere, "rings = 2")));
+    assert!(e.message.contains("a `cylinder` cut in a 3D one"), "{e}");
+    // A second hole along x whose zone meets the first one's.
+    let crossing = drilled_plate("z", 2)
+        + "\n[[body.cut]]\ncylinder = { base = [-1.0, 20.0, 1.5], axis = \"x\", radius = 1.0, length = 50.0 }\nrings = 1\n";
+    let e = parse_scene(&crossing, "drilled.toml").expect_err("crossing ring zones");
+    assert_eq!(e.field, "body[plate].cut[1].rings");
+    assert!(
+        e.message.contains("overlaps that of body[plate].cut[0]"),
+        "{e}"
+    );
+    // A second box on the plate whose lattice is shifted by 0.3Δx along the hole's axis
+    // (layers z = 3.3, 4.3 above the plate's 0.5, 1.5, 2.5):
+    // its layers and the plate's cannot be measured one by one.
+    let shifted = drilled_plate("z", 2).replace(
+        "box = { min = [0.0, 0.0, 0.0], max = [40.0, 40.0, 3.0] }",
+        "\n[[body.shape]]\nbox = { min = [0.0, 0.0, 0.0], max = [40.0, 40.0, 3.0] }\n\n[[body.shape]]\nbox = { min = [0.0, 0.0, 2.8], max = [40.0, 40.0, 4.8] }\n",
+    );
+    let e = parse_scene(&shifted, "drilled.toml").expect_err("shifted layers");
+    assert_eq!(e.field, "body[plate].cut[0].rings", "{e}");
+    assert!(e.message.contains("one spacing apart"), "{e}");
+}
