@@ -3,6 +3,8 @@
 //! `[[body.cut]]` disc; the top and bottom rows move apart at constant speed. The stress
 //! σ_yy(x, 0) along the horizontal line through the centre, divided by the remote stress σ∞,
 //! is averaged over a time window and compared with Kirsch's infinite-plate solution (Eq 3.1).
+//! The full tier also drills the same hole through a 3D plate with free faces
+//! ([`simulate_drilled`]), with rings in every layer and on the plain lattice.
 
 use crate::report::{Curve, ProblemReport, ReportRow, RunCost, Series, Tier};
 use std::time::Instant;
