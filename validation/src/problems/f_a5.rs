@@ -2,8 +2,9 @@
 //! Figs 3.15–3.16, App. A.5) in thesis mode (updated-Lagrangian, kernel interaction between the
 //! rings): ring A without and ring B with Monaghan's artificial stress in the same run. Fuller:
 //! A clumps and cracks, B stays almost free of clumping. TL mode: the rings are TLSPH bodies
-//! in particle contact (the spec's pass criteria: no fragmentation, no clump, separation with
-//! momentum conserved).
+//! in particle contact, each packed as concentric rings of particles (the spec's pass
+//! criteria: no fragmentation, no clump, separation with momentum conserved); the full tier
+//! also runs TL mode on the thesis' integer lattice.
 
 use super::fuller_scenes::{
     body_sums, header, integer_ring, parse, set_particles, thesis_effects, tl_contact_effects, Mode,
@@ -34,11 +35,36 @@ pub fn scene(end_time: f64, xsph: f64) -> String {
     rings_scene("updated-lagrangian", end_time) + &thesis_effects(Some(xsph), Some(&["ringB"]))
 }
 
-/// TL-mode scene: the same rings as TLSPH bodies in particle contact, each also in
-/// self-contact (at 0.086c a ring this thin is squashed until its inner faces meet: its
-/// diametral stiffness ≈ EI/(0.149 R³) ≈ 2e-3 would need an indentation of about 70Δx, more
-/// than its diameter, to store its kinetic energy).
+/// Ring centres of TL mode ±(34.5 + 1.5): the outermost of the five particle rings lies at
+/// r = 34.5, so the nearest particles of the two bodies again start 2h = 3Δx apart.
+pub const TL_CENTRE_X: f64 = 34.5 + 1.5;
+
+/// TL-mode scene: the rings as TLSPH bodies in particle contact, each also in self-contact
+/// (at 0.086c a ring this thin is squashed until its inner faces meet: its diametral
+/// stiffness ≈ EI/(0.149 R³) ≈ 2e-3 would need an indentation of about 70Δx, more than its
+/// diameter, to store its kinetic energy). Each ring is packed as five concentric rings of
+/// particles, r = 30.5 … 34.5 (`[[body.cut]] rings = 5` on a disc of radius 35 cut at 30):
+/// 1020 particles, as on the integer lattice, but without the lattice's notches, the missing
+/// point at each of the four axis points of the inner face (r = 30 is not inside 30 < r < 35)
+/// `[C]`. Where the squashed ring folds, such a notch on the compressed inner face closes
+/// until its two flanking particles, 2Δx apart in the reference, are 0.1Δx apart
+/// ([`scene_tl_lattice`], reported in the full tier).
 pub fn scene_tl(end_time: f64) -> String {
+    let (outer, inner) = RADII;
+    let ring = |name: &str, x: f64, speed: f64| {
+        format!(
+            "\n[[body]]\nname = \"{name}\"\nmaterial = \"rubber\"\nspacing = 1.0\ndisc = {{ centre = [{x:.1}, 0.0], radius = {outer:.1} }}\nvelocity = [{speed:.1}, 0.0]\n\n[[body.cut]]\ndisc = {{ centre = [{x:.1}, 0.0], radius = {inner:.1} }}\nrings = {:.0}\n",
+            outer - inner
+        )
+    };
+    header("total-lagrangian-corrected", end_time, &[("rubber", 1.0)])
+        + &ring("ringA", -TL_CENTRE_X, SPEED)
+        + &ring("ringB", TL_CENTRE_X, -SPEED)
+        + &tl_contact_effects(&[("ringA", "ringB"), ("ringA", "ringA"), ("ringB", "ringB")])
+}
+
+/// TL mode on the thesis' integer lattice ([`integer_ring`], placed by [`simulate_tl_lattice`]).
+pub fn scene_tl_lattice(end_time: f64) -> String {
     rings_scene("total-lagrangian-corrected", end_time)
         + &tl_contact_effects(&[("ringA", "ringB"), ("ringA", "ringA"), ("ringB", "ringB")])
 }
@@ -90,24 +116,37 @@ pub fn simulate(end_time: f64, xsph: f64) -> RingsRun {
     simulate_scene(&scene(end_time, xsph), Mode::Thesis)
 }
 
-/// Runs the TL-mode collision to `end_time`.
+/// Runs the TL-mode collision of the ring-packed rings ([`scene_tl`]) to `end_time`.
 pub fn simulate_tl(end_time: f64) -> RingsRun {
-    simulate_scene(&scene_tl(end_time), Mode::TotalLagrangian)
+    run_model(
+        parse(&scene_tl(end_time), "F-A5 TL scene"),
+        Mode::TotalLagrangian,
+    )
 }
 
+/// Runs the TL-mode collision on the thesis' integer lattice ([`scene_tl_lattice`]).
+pub fn simulate_tl_lattice(end_time: f64) -> RingsRun {
+    simulate_scene(&scene_tl_lattice(end_time), Mode::TotalLagrangian)
+}
+
+/// Reads `text` and places the thesis' integer-lattice rings in it.
 fn simulate_scene(text: &str, mode: Mode) -> RingsRun {
     let mut model = parse(text, "F-A5 scene");
     let (outer, inner) = RADII;
     let a = integer_ring(Vector::<2>::new(-CENTRE_X, 0.0), inner, outer);
     let b = integer_ring(Vector::<2>::new(CENTRE_X, 0.0), inner, outer);
+    set_particles(&mut model, 0, a, |_| Vector::<2>::new(SPEED, 0.0));
+    set_particles(&mut model, 1, b, |_| Vector::<2>::new(-SPEED, 0.0));
+    run_model(model, mode)
+}
+
+fn run_model(model: tlsph_solver::Model<2>, mode: Mode) -> RingsRun {
     let mut run = RingsRun {
-        particles_per_ring: a.len(),
+        particles_per_ring: model.bodies[0].positions.len(),
         min_ratio: (f64::INFINITY, f64::INFINITY),
         min_raw_ratio: f64::INFINITY,
         ..RingsRun::default()
     };
-    set_particles(&mut model, 0, a, |_| Vector::<2>::new(SPEED, 0.0));
-    set_particles(&mut model, 1, b, |_| Vector::<2>::new(-SPEED, 0.0));
     let mut sim = Simulation::new(model).expect("F-A5 is valid");
     let start = Instant::now();
     let scale = sim.masses().iter().sum::<f64>() * SPEED;
@@ -272,13 +311,10 @@ pub fn run(tier: Tier) -> ProblemReport {
                 .with_cost(tl.cost),
         );
     }
-    // The spec's "no clump" (min pair distance ≥ 0.5Δx) is not met on the thesis lattice:
-    // the rings are squashed flat and fold at the ends of the flattened part, where five
-    // particles through the wall cannot follow the fold (see the note); judged in the full
-    // tier as a known deviation.
+    // The spec's "no clump": every particle's nearest neighbour stays at ≥ 0.5 of its
+    // reference distance.
     let tl_min = tl.min_ratio.0.min(tl.min_ratio.1);
-    report.push_full_tier_row(
-        tier,
+    report.rows.push(
         ReportRow::with_error(
             ID,
             "TL mode: smallest normalised nearest-neighbour ratio, either ring (no clump: >= 0.5)",
@@ -317,11 +353,25 @@ pub fn run(tier: Tier) -> ProblemReport {
         tl.cost.particle_steps_per_s(),
     ));
     report.notes.push(format!(
-        "TL mode: a ring this thin cannot stop 0.086c elastically — its diametral stiffness EI/(0.149 R³) ≈ 2e-3 would need an indentation of about 70Δx, more than its diameter — so each ring is squashed until its inner faces meet (self-contact holds them apart: without it they pass through each other) and folds sharply where the flattened part ends. The smallest nearest-neighbour distance over the run is {:.2}Δx (normalised ratio {:.3}); in the study made when this run was set up it lay at such a fold, between two inner-face particles 2Δx apart in the reference. The fold radius is about the wall thickness, five particles, which the kernel-smoothed F cannot follow. It is the resolution of a physical fold, not clumping: no lattice-neighbour pair leaves its support and the clumping index stays at {:.3}.",
+        "TL mode: a ring this thin cannot stop 0.086c elastically — its diametral stiffness EI/(0.149 R³) ≈ 2e-3 would need an indentation of about 70Δx, more than its diameter — so each ring is squashed until its inner faces meet (self-contact holds them apart: without it they pass through each other) and folds where the flattened part ends. Each ring is packed as five concentric rings of particles (`[[body.cut]] rings = 5`, {} particles, the integer lattice's count) `[C]`. The smallest nearest-neighbour distance over the run is {:.2}Δx (normalised ratio {:.3}): the compressed inner face of a fold, whose continuum hoop stretch there is about 0.5–0.7 (a fold of inner radius 2–4Δx bent from r = 30).",
+        tl.particles_per_ring,
         tl.min_raw_ratio,
         tl_min,
-        tl.max_clumping.0.max(tl.max_clumping.1),
     ));
+    if tier == Tier::Full {
+        let lattice = simulate_tl_lattice(TL_END_TIME);
+        report.notes.push(format!(
+            "TL mode on the thesis' integer lattice (full tier, not judged): normalised nearest-neighbour ratio min A {:.3}, B {:.3} (raw {:.2}Δx); longest lattice-neighbour distance {:.3} × 2h0; final velocities A {:.4}, B {:.4}; momentum error {:.1e}; {:.2} s. The lattice annulus 30 < r < 35 has a notch on its inner face at each of the four axis points (the point at r = 30 is not inside), and where the squashed ring folds the notch on the compressed inner face closes until its two flanking particles, 2Δx apart in the reference, come within a tenth of a spacing: a discrete defect of the lattice under a compression of about 90 %, where the continuum fold compresses its inner face by 30–50 %. The ring-packed annulus of the rows has no notch.",
+            lattice.min_ratio.0,
+            lattice.min_ratio.1,
+            lattice.min_raw_ratio,
+            lattice.worst_lattice_bond,
+            lattice.final_velocities.0,
+            lattice.final_velocities.1,
+            lattice.momentum_error,
+            lattice.cost.wall_s,
+        ));
+    }
     let suffix = if tier == Tier::Full { "full" } else { "quick" };
     let pick = |run: &RingsRun, k: usize| -> Vec<(f64, f64)> {
         run.history
