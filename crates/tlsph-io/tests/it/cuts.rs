@@ -110,33 +110,13 @@ fn notches_and_overlapping_cuts_count_each_point_once() {
 
 #[test]
 fn a_cylinder_cut_drills_a_3d_plate() {
-    let text = r#"
-[simulation]
-dimension = 3
-formulation = "total-lagrangian"
-kernel = "cubic-spline"
-smoothing_factor = 1.2
-cfl = 0.3
-end_time = 1.0
-
-[[material]]
-name = "m"
-model = "linear-elastic"
-density = 1.0
-youngs_modulus = 1.0
-poisson_ratio = 0.3
-
-[[body]]
-name = "plate"
-material = "m"
-spacing = 1.0
-box = { min = [0.0, 0.0, 0.0], max = [4.0, 4.0, 2.0] }
-
-[[body.cut]]
-cylinder = { base = [2.0, 2.0, -1.0], axis = "z", radius = 1.0, length = 4.0 }
-"#;
+    let text = drilled(
+        "[4.0, 4.0, 2.0]",
+        "base = [2.0, 2.0, -1.0], axis = \"z\", radius = 1.0, length = 4.0",
+        0,
+    );
     // The four points (1.5 | 2.5, 1.5 | 2.5) are √0.5 from the axis: 4 per layer, 2 layers.
-    assert_eq!(parse_scene(text, "p.toml").unwrap().n_particles(), 32 - 8);
+    assert_eq!(parse_scene(&text, "p.toml").unwrap().n_particles(), 32 - 8);
 }
 
 #[test]
@@ -467,6 +447,16 @@ fn drilled_plate(axis: &str, rings: usize) -> String {
         "y" => ("[40.0, 3.0, 40.0]", "[20.0, -1.0, 20.0]"),
         _ => ("[40.0, 40.0, 3.0]", "[20.0, 20.0, -1.0]"),
     };
+    drilled(
+        size,
+        &format!("base = {base}, axis = \"{axis}\", radius = 5.0, length = 5.0"),
+        rings,
+    )
+}
+
+/// A 3D box plate from the origin to `size` (Δx = 1) with one `cylinder` cut (its keys) and
+/// `rings`.
+fn drilled(size: &str, cylinder: &str, rings: usize) -> String {
     format!(
         r#"
 [simulation]
@@ -491,7 +481,7 @@ spacing = 1.0
 box = {{ min = [0.0, 0.0, 0.0], max = {size} }}
 
 [[body.cut]]
-cylinder = {{ base = {base}, axis = "{axis}", radius = 5.0, length = 5.0 }}
+cylinder = {{ {cylinder} }}
 rings = {rings}
 "#
     )
