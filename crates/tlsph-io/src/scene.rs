@@ -1308,17 +1308,20 @@ impl<const D: usize> RingedCut<D> {
         (lo, hi)
     }
 
-    /// The ring particles ([`hole_rings`]) in the plane through `x` (a point of a lattice
-    /// layer the hole passes through; 2D: any point).
-    fn rings_through(&self, x: &Vector<D>, spacing: f64) -> Vec<Vector<D>> {
+    /// The ring particles ([`hole_rings`]) of the lattice layer at coordinate `layer` along
+    /// the cylinder's axis (2D: `None`, the plane itself).
+    fn rings_in(&self, layer: Option<f64>, spacing: f64) -> Vec<Vector<D>> {
         let [a, b] = self.plane;
         let centre = Vector::<2>::new(self.centre[a], self.centre[b]);
         hole_rings(&centre, self.radius, self.rings, spacing)
             .into_iter()
             .map(|p| {
-                let mut y = *x;
+                let mut y = Vector::<D>::zeros();
                 y[a] = p[0];
                 y[b] = p[1];
+                if let (Some((k, _, _)), Some(s)) = (self.axial, layer) {
+                    y[k] = s;
+                }
                 y
             })
             .collect()
@@ -1350,8 +1353,8 @@ fn apply_cuts<const D: usize>(
     let mut keep = vec![true; positions.len()];
     let mut cuts: Vec<Shape<D>> = Vec::new();
     let mut ringed: Vec<RingedCut<D>> = Vec::new();
-    // One lattice point of each layer a ringed cut passes through (2D: one point).
-    let mut layer_points: Vec<(usize, Vector<D>)> = Vec::new();
+    // Each ringed cut with the lattice layers it passes through (2D: the one plane, `None`).
+    let mut ring_layers: Vec<(usize, Option<f64>)> = Vec::new();
     for (k, cut) in b.cut.iter().enumerate() {
         let field = |key: &str| format!("body[{name}].cut[{k}].{key}");
         if cut.box_.is_none()
@@ -1441,17 +1444,26 @@ fn apply_cuts<const D: usize>(
                     ));
                 }
                 let outer = this.outer(spacing);
-                let mut layers: Vec<Vector<D>> = Vec::new();
+                let mut along_axis: Vec<f64> = Vec::new();
                 for (x, kept) in positions.iter().zip(keep.iter_mut()) {
-                    if this.within(x, outer) {
+                    let in_zone = this.within(x, outer);
+                    if in_zone {
                         *kept = false;
                     }
-                    if this.within(x, outer) || shape.contains(x) {
-                        layers.push(*x);
+                    if let Some((axis, _, _)) = this.axial.filter(|_| in_zone || shape.contains(x))
+                    {
+                        along_axis.push(x[axis]);
                     }
                 }
                 let ring = ringed.len();
-                layer_points.extend(distinct_layers(layers, this.axial).map(|x| (ring, x)));
+                match this.axial {
+                    Some(_) => ring_layers.extend(
+                        distinct_layers(along_axis)
+                            .into_iter()
+                            .map(|s| (ring, Some(s))),
+                    ),
+                    None => ring_layers.push((ring, None)),
+                }
                 ringed.push(this);
             }
         }
@@ -1460,8 +1472,8 @@ fn apply_cuts<const D: usize>(
     keep_particles(&keep, positions, velocities, volumes);
     let in_body =
         |x: &Vector<D>| fills.iter().any(|f| f.covers(x)) && !cuts.iter().any(|c| c.contains(x));
-    for (ring, layer) in &layer_points {
-        for x in ringed[*ring].rings_through(layer, spacing) {
+    for &(ring, layer) in &ring_layers {
+        for x in ringed[ring].rings_in(layer, spacing) {
             if cuts.iter().any(|c| c.contains(&x)) {
                 continue;
             }
@@ -1500,20 +1512,17 @@ fn apply_cuts<const D: usize>(
     Ok(())
 }
 
-/// One point per distinct layer of `points` along `axial`'s axis (coordinates within 1e-9 of
-/// each other are one layer); without an axis (2D), the first point.
-fn distinct_layers<const D: usize>(
-    mut points: Vec<Vector<D>>,
-    axial: Option<(usize, f64, f64)>,
-) -> impl Iterator<Item = Vector<D>> {
-    match axial {
-        Some((k, _, _)) => {
-            points.sort_by(|a, b| a[k].total_cmp(&b[k]));
-            points.dedup_by(|a, b| (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0));
-        }
-        None => points.truncate(1),
-    }
-    points.into_iter()
+/// Whether two coordinates along an axis belong to the same lattice layer (equal to 1e-9,
+/// relative to the larger of 1 and the coordinate).
+fn same_layer(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * b.abs().max(1.0)
+}
+
+/// The distinct layers ([`same_layer`]) among the coordinates `along_axis`, in increasing order.
+fn distinct_layers(mut along_axis: Vec<f64>) -> Vec<f64> {
+    along_axis.sort_by(f64::total_cmp);
+    along_axis.dedup_by(|a, b| same_layer(*a, *b));
+    along_axis
 }
 
 /// Sets the reference volumes of the particles `targets` (those within two spacings of a ring
@@ -1562,9 +1571,7 @@ fn ring_zone_volumes<const D: usize>(
                     .any(|o| o.within(&positions[i], o.outer(spacing) + 2.0 * spacing))
             })
             .collect();
-        let mut layers: Vec<f64> = mine.iter().map(|&i| positions[i][axis]).collect();
-        layers.sort_by(f64::total_cmp);
-        layers.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
+        let layers = distinct_layers(mine.iter().map(|&i| positions[i][axis]).collect());
         if let Some(w) = layers
             .windows(2)
             .find(|w| w[1] - w[0] < (1.0 - 1e-9) * spacing)
@@ -1584,9 +1591,8 @@ fn ring_zone_volumes<const D: usize>(
         }
         let [a, c] = ring.plane;
         for s in layers {
-            let same_layer = |x: &Vector<D>| (x[axis] - s).abs() <= 1e-9 * s.abs().max(1.0);
             let members: Vec<usize> = (0..positions.len())
-                .filter(|&i| same_layer(&positions[i]))
+                .filter(|&i| same_layer(positions[i][axis], s))
                 .collect();
             let flat: Vec<Vector<2>> = members
                 .iter()

@@ -120,17 +120,16 @@ fn plate_scene(
     let c = 0.5 * side;
     // In 3D every point gets a z coordinate, and the hole and the pulled rows run through the
     // thickness.
-    let (dimension, z, z_lo, z_hi, v_z) = match thickness {
+    let (dimension, zero, z, z_lo, z_hi) = match thickness {
         Some(t) => (
             3,
-            format!(", {t:.1}"),
-            ", -1.0".to_string(),
-            format!(", {:.1}", t + 1.0),
             ", 0.0",
+            format!(", {t:.1}"),
+            ", -1.0",
+            format!(", {:.1}", t + 1.0),
         ),
-        None => (2, String::new(), String::new(), String::new(), ""),
+        None => (2, "", String::new(), "", String::new()),
     };
-    let zero = if thickness.is_some() { ", 0.0" } else { "" };
     let hole = match thickness {
         Some(t) => format!(
             "cylinder = {{ base = [{c:.1}, {c:.1}, -1.0], axis = \"z\", radius = {radius:.1}, length = {:.1} }}",
@@ -169,14 +168,14 @@ rings = {rings}
 name = "top"
 body = "plate"
 box = {{ min = [-1.0, {top:.1}{z_lo}], max = [{wide:.1}, {wide:.1}{z_hi}] }}
-velocity = [0.0, {ROW_SPEED:e}{v_z}]
+velocity = [0.0, {ROW_SPEED:e}{zero}]
 components = ["y"]
 
 [[boundary]]
 name = "bottom"
 body = "plate"
 box = {{ min = [-1.0, -1.0{z_lo}], max = [{wide:.1}, 1.0{z_hi}] }}
-velocity = [0.0, -{ROW_SPEED:e}{v_z}]
+velocity = [0.0, -{ROW_SPEED:e}{zero}]
 components = ["y"]
 "#,
         top = side - 1.0,
@@ -221,7 +220,8 @@ pub struct PlateRun {
 
 /// y-force the rest of the body exerts on particles `rows`, from the solver's force sum
 /// f_I = V0_I [P_I Σ_J V0_J G̃_IJ − Σ_J P_J V0_J G̃_JI] (numerics.md §4.5 (c)), with
-/// P = J σ F⁻ᵀ and V0_J G̃_JI read from J's bond to I (uniform V0 = Δx² = 1 here).
+/// P = J σ F⁻ᵀ and V0_J G̃_JI read from J's bond to I (V0_I = Δx^D = 1 on the pulled rows, far
+/// from the rings).
 fn internal_force_y<const D: usize>(sim: &Simulation<D>, rows: &[usize]) -> f64 {
     let bonds = sim.bonds();
     let pk1 = |i: usize| -> Tensor<D> {

@@ -39,6 +39,10 @@ pub fn scene(end_time: f64, xsph: f64) -> String {
 /// r = 34.5, so the nearest particles of the two bodies again start 2h = 3Δx apart.
 pub const TL_CENTRE_X: f64 = 34.5 + 1.5;
 
+/// TL mode's contact pairs: the two rings, and each ring with itself (self-contact).
+const TL_CONTACT_PAIRS: [(&str, &str); 3] =
+    [("ringA", "ringB"), ("ringA", "ringA"), ("ringB", "ringB")];
+
 /// TL-mode scene: the rings as TLSPH bodies in particle contact, each also in self-contact
 /// (at 0.086c a ring this thin is squashed until its inner faces meet: its diametral
 /// stiffness ≈ EI/(0.149 R³) ≈ 2e-3 would need an indentation of about 70Δx, more than its
@@ -60,13 +64,12 @@ pub fn scene_tl(end_time: f64) -> String {
     header("total-lagrangian-corrected", end_time, &[("rubber", 1.0)])
         + &ring("ringA", -TL_CENTRE_X, SPEED)
         + &ring("ringB", TL_CENTRE_X, -SPEED)
-        + &tl_contact_effects(&[("ringA", "ringB"), ("ringA", "ringA"), ("ringB", "ringB")])
+        + &tl_contact_effects(&TL_CONTACT_PAIRS)
 }
 
 /// TL mode on the thesis' integer lattice ([`integer_ring`], placed by [`simulate_tl_lattice`]).
 pub fn scene_tl_lattice(end_time: f64) -> String {
-    rings_scene("total-lagrangian-corrected", end_time)
-        + &tl_contact_effects(&[("ringA", "ringB"), ("ringA", "ringA"), ("ringB", "ringB")])
+    rings_scene("total-lagrangian-corrected", end_time) + &tl_contact_effects(&TL_CONTACT_PAIRS)
 }
 
 fn rings_scene(formulation: &str, end_time: f64) -> String {
