@@ -27,7 +27,6 @@ mod updated_lagrangian;
 
 pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
-pub use effects::{CONTACT_SKIN_FRACTION, SURFACE_FRACTION};
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
 pub use model::{

@@ -6,8 +6,7 @@ use crate::damage::{update_damaged_elastic, DamageState};
 use crate::diagnostics::Diagnostics;
 use crate::effects::{
     BodyForce, BookedEffect, Configuration, EffectContext, HourglassControl,
-    MonaghanArtificialStress, MonaghanViscosity, PairLaw, ParticleContact, PenaltyContact,
-    PenaltyPairLaw, RigidWall,
+    MonaghanArtificialStress, MonaghanViscosity, ParticleContact, PenaltyContact, RigidWall,
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
@@ -25,6 +24,7 @@ use crate::step::{
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
+use tlsph_contact::{PenaltyLaw, PotentialLaw};
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
@@ -2027,7 +2027,7 @@ fn build_contact<const D: usize>(
     }
     let nb = bodies.len();
     let pairs = contact_pairs(model, contact.pairs.as_deref(), bodies, "contact.pairs")?;
-    let mut laws: Vec<Option<PairLaw>> = vec![None; nb * nb];
+    let mut laws: Vec<Option<PotentialLaw>> = vec![None; nb * nb];
     for (a, b) in pairs {
         let (ba, bb) = (&bodies[a], &bodies[b]);
         let modulus = |info: &BodyInfo| model.materials[info.material].model.longitudinal_modulus();
@@ -2047,17 +2047,17 @@ fn build_contact<const D: usize>(
                 ),
             );
         }
-        let law = PairLaw {
+        let law = PotentialLaw::new(
             kernel,
             d0,
-            coefficient: contact.scale * modulus(ba).min(modulus(bb)) * d0.powi(D as i32 - 1),
-            exclusion: if a == b { kernel.support_radius() } else { 0.0 },
-        };
+            contact.scale * modulus(ba).min(modulus(bb)) * d0.powi(D as i32 - 1),
+            contact.exponent,
+            if a == b { kernel.support_radius() } else { 0.0 },
+        );
         laws[a * nb + b] = Some(law);
         laws[b * nb + a] = Some(law);
     }
     Ok(ParticleContact::new(
-        contact.exponent,
         laws,
         nb,
         &body_indices(bodies, n_real),
@@ -2148,7 +2148,7 @@ fn build_penalty_contact<const D: usize>(
             );
         }
         let youngs = |info: &BodyInfo| model.materials[info.material].model.youngs_modulus();
-        let law = PenaltyPairLaw::new::<D>(
+        let law = PenaltyLaw::new::<D>(
             contact.stiffness,
             contact.range,
             contact.friction,

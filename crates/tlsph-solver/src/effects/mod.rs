@@ -5,7 +5,6 @@
 
 mod artificial_stress;
 mod body_force;
-mod contact_candidates;
 mod hourglass;
 mod monaghan_viscosity;
 mod particle_contact;
@@ -16,10 +15,8 @@ pub use artificial_stress::MonaghanArtificialStress;
 pub use body_force::BodyForce;
 pub use hourglass::HourglassControl;
 pub use monaghan_viscosity::MonaghanViscosity;
-pub(crate) use particle_contact::PairLaw;
-pub use particle_contact::{ParticleContact, CONTACT_SKIN_FRACTION};
-pub(crate) use penalty_contact::PenaltyPairLaw;
-pub use penalty_contact::{PenaltyContact, SURFACE_FRACTION};
+pub use particle_contact::ParticleContact;
+pub use penalty_contact::PenaltyContact;
 pub use rigid_wall::RigidWall;
 
 use crate::bonds::Bonds;

@@ -1,36 +1,15 @@
-//! Fuller's particle-type penalty contact with Coulomb friction (numerics.md §12.1, F §4.3–4.4).
+//! Fuller's particle-type penalty contact with Coulomb friction (numerics.md §12.1, F §4.3–4.4):
+//! the effect that drives `tlsph_contact::PenaltyLaw`.
 //!
 //! Every body is a particle type: kernel (stress) interactions stay inside a type, and bodies of
-//! different types meet only through this contact. Each step, at x^n:
-//!
-//! 1. **Surface detection** (F §4.3.1): n_I = number of same-type neighbours of I within the
-//!    kernel support — in a total-Lagrangian formulation the support is the reference one, so
-//!    n_I is I's live bond count (a failed neighbour no longer counts); in the
-//!    updated-Lagrangian formulation it is the current pairs within 2h. n_full is the largest
-//!    n_I of the body at the first step (the fully surrounded lattice value, 24 in 2D and 92 in
-//!    3D for h = 1.5Δx). I is a surface particle if n_I ≤ [`SURFACE_FRACTION`] · n_full.
-//! 2. **Normals** (F 4.1): n_I = Σ_J (x_I − x_J)/r_IJ W(r_IJ) over all live same-type
-//!    neighbours, normalised to unit length; it points out of the body. `[C]`: Fuller's
-//!    preferred variant leaves out neighbours that are surface particles themselves; on the
-//!    stepped face of a lattice disc that tilted face normals by up to 34° (all neighbours: 4°),
-//!    and a tilted normal puts a partner one spacing away up to 17 % inside the range.
-//! 3. **Interaction zone** (F §4.3.3): K of another type is in contact with surface particle I
-//!    when r⊥ = (x_K − x_I)·n̂_I lies in [−d0, R) and the tangential offset
-//!    t = |(x_K − x_I) − r⊥ n̂_I| < d0, with d0 = ½(Δx_A + Δx_B). In 2D this is Fuller's square;
-//!    in 3D the zone is the cylinder of that radius `[C]` (a cube aligned with n̂ alone has no
-//!    defined orientation about it). Of two surface particles the flatter one gives the normal
-//!    (see `defines_normal`).
-//! 4. **Penalty force** (F 4.2 as corrected in numerics.md §12.1 `[C]`): the pair potential
-//!    U = Φ(r⊥) w(t), Φ = k_c [R ln(R/r⊥) − (R − r⊥)] (so −Φ' = k_c (R/r⊥ − 1), Fuller's
-//!    force; r⊥ floored at 0.05R), w = (1 − (t/d0)²)², with n̂_I held: f_K = −∇_K U, f_I = −f_K,
-//!    k_c = s E* d0^{d−1} (E* the smaller Young's modulus of the pair, s the scene's stiffness
-//!    factor, default 1), R = range · d0 (default 1). `[C]`: Fuller's zone switches a pair's
-//!    whole force on and off at its sides, which is not conservative: faces sliding past each
-//!    other pumped energy into the contact (a slider falling at v onto a plate while sliding at
-//!    5v rebounded at 1.36v). The weight and its small tangential force −Φ w' t̂ make each
-//!    pair conservative for a fixed normal.
-//! 5. **Friction** (F 4.3): f_K += −μ |f_n| v̂_t, v_t the part of v_K − v_I tangential to n̂_I at
-//!    t^n, v̂_t = v_t / max(|v_t|, 1e-6 c*) (c* the smaller sound speed); f_I gets the opposite.
+//! different types meet only through this contact. Each step, at x^n, the effect counts each
+//! participant's live same-type neighbours within the kernel support (in a total-Lagrangian
+//! formulation the support is the reference one, so the count is I's live bond count and a
+//! failed neighbour no longer counts; in the updated-Lagrangian formulation it is the current
+//! pairs within 2h). The fully surrounded count is the largest of the body at the first step
+//! (24 in 2D and 92 in 3D for h = 1.5Δx). From the counts come the surface flags, the outward
+//! normals of the surface particles, and the pair forces of the law (zone, penalty, friction).
+//! Of two surface particles the flatter one gives the normal (see `defines_normal`).
 //!
 //! Each pair contribution is one function of (I, K) evaluated identically from both ends, so
 //! forces are equal and opposite and linear momentum is conserved to round-off. The force is
@@ -41,157 +20,23 @@
 //! Not built: Fuller's multiple-normal refinement and the corner class (n_I ≤ 0.5 n_full), which
 //! only that refinement uses.
 
-use super::contact_candidates::{ContactCandidates, MIN_PER_TASK};
 use super::{Configuration, Effect, EffectContext};
 use rayon::prelude::*;
+use tlsph_contact::{
+    is_surface, ContactCandidates, OutwardNormal, PenaltyLaw, DT_FACTOR, SKIN_FRACTION,
+};
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
 
-/// Surface threshold: a particle with at most this fraction of the fully surrounded neighbour
-/// count is a surface particle (F §4.3.1: 75 %). The lattice check of numerics.md §12.1 puts a
-/// flat face at 58 % (2D) / 63 % (3D) and the row beneath it at 79 % / 86 %, so the threshold
-/// separates them in both dimensions.
-pub const SURFACE_FRACTION: f64 = 0.75;
-
-/// Penetration floor of the penalty law as a fraction of R (numerics.md §12.1 `[C]`): the force
-/// stops growing at 19 k_c once a particle is 95 % of the way through the range.
-const FLOOR_FRACTION: f64 = 0.05;
-
-/// Friction regularisation speed as a fraction of the smaller sound speed (numerics.md §12.1).
-const SLIP_FRACTION: f64 = 1e-6;
-
-/// Verlet skin of the cross-type candidate list as a fraction of the smallest d0 (as the
-/// potential contact, `CONTACT_SKIN_FRACTION`).
-const SKIN_FRACTION: f64 = 0.5;
-
-/// Safety factor of the contact time-step bound Δt ≤ 0.5 sqrt(m/k) (numerics.md §7 `[C]`).
-const DT_FACTOR: f64 = 0.5;
-
-/// Penalty law of one pair of bodies (numerics.md §12.1).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PenaltyPairLaw {
-    /// k_c = s E* d0^{d−1} \[N/m^{3−d}·m^{d−1} = force\].
-    pub stiffness: f64,
-    /// Range R of the force along the normal \[m\].
-    pub range: f64,
-    /// d0 = ½(Δx_A + Δx_B): tangential half-width and penetration depth of the zone \[m\].
-    pub reach: f64,
-    /// Friction coefficient μ (0: frictionless).
-    pub friction: f64,
-    /// Regularisation speed 1e-6 c* of the friction direction \[m/s\].
-    pub slip_speed: f64,
-}
-
-impl PenaltyPairLaw {
-    /// Builds the law from the pair's moduli and spacings (numerics.md §12.1 item 5).
-    pub(crate) fn new<const D: usize>(
-        stiffness_factor: f64,
-        range_factor: f64,
-        friction: f64,
-        youngs: f64,
-        sound_speed: f64,
-        reach: f64,
-    ) -> Self {
-        Self {
-            stiffness: stiffness_factor * youngs * reach.powi(D as i32 - 1),
-            range: range_factor * reach,
-            reach,
-            friction,
-            slip_speed: SLIP_FRACTION * sound_speed,
-        }
-    }
-
-    /// Whether K at offset d = x_K − x_I from surface particle I (normal n̂) is in I's zone,
-    /// and if so (r⊥, tangential offset vector t, |t|).
-    #[inline]
-    fn normal_offset<const D: usize>(
-        &self,
-        d: &Vector<D>,
-        normal: &Vector<D>,
-    ) -> Option<(f64, Vector<D>, f64)> {
-        let r_n = d.dot(normal);
-        if !(r_n >= -self.reach && r_n < self.range) {
-            return None;
-        }
-        let t = d - normal * r_n;
-        let t_len = t.norm();
-        (t_len < self.reach).then_some((r_n, t, t_len))
-    }
-
-    /// Tangential weight w(t) = (1 − (t/d0)²)² and dw/dt: 1 on I's axis, zero with zero slope
-    /// at the zone's side.
-    #[inline]
-    fn weight(&self, t: f64) -> (f64, f64) {
-        let s = t / self.reach;
-        let q = 1.0 - s * s;
-        (q * q, -4.0 * s * q / self.reach)
-    }
-
-    /// Normal force magnitude −dΦ/dr⊥, potential Φ(r⊥) and tangent stiffness at r⊥ (floored:
-    /// constant force below the floor).
-    #[inline]
-    fn normal_force(&self, r_n: f64) -> (f64, f64, f64) {
-        let floor = FLOOR_FRACTION * self.range;
-        let r = r_n.max(floor);
-        let force = self.stiffness * (self.range / r - 1.0);
-        let potential = self.stiffness * (self.range * (self.range / r).ln() - (self.range - r))
-            + force * (r - r_n);
-        (force, potential, self.stiffness * self.range / (r * r))
-    }
-
-    /// Force on K from surface particle I: penalty plus friction (numerics.md §12.1 items 5–6).
-    #[inline]
-    fn force_on_partner<const D: usize>(
-        &self,
-        d: &Vector<D>,
-        normal: &Vector<D>,
-        relative_velocity: &Vector<D>,
-    ) -> Option<Vector<D>> {
-        let (r_n, t, t_len) = self.normal_offset(d, normal)?;
-        let (w, dw) = self.weight(t_len);
-        let (f, phi, _) = self.normal_force(r_n);
-        let f_n = w * f;
-        let mut force = normal * f_n;
-        // −∂(Φ w)/∂t: with n̂ held, the pair force is the gradient of Φ(r⊥) w(t).
-        if t_len > 0.0 {
-            force -= t * (phi * dw / t_len);
-        }
-        if self.friction > 0.0 {
-            let v_t = relative_velocity - normal * relative_velocity.dot(normal);
-            let speed = v_t.norm().max(self.slip_speed);
-            force -= v_t * (self.friction * f_n.abs() / speed);
-        }
-        Some(force)
-    }
-
-    /// Normal stiffness of the pair for the time-step vote: the tangent stiffness inside the
-    /// zone, the first-touch stiffness k_c/R within the skin beyond R (it may touch during the
-    /// next step), else `None`.
-    #[inline]
-    fn vote_stiffness<const D: usize>(
-        &self,
-        d: &Vector<D>,
-        normal: &Vector<D>,
-        skin: f64,
-    ) -> Option<f64> {
-        if let Some((r_n, _, t)) = self.normal_offset(d, normal) {
-            return Some(self.weight(t).0 * self.normal_force(r_n).2);
-        }
-        let r_n = d.dot(normal);
-        let tangential = d - normal * r_n;
-        (r_n >= self.range
-            && r_n < self.range + skin
-            && tangential.norm_squared() <= self.reach * self.reach)
-            .then_some(self.stiffness / self.range)
-    }
-}
+/// Participants per parallel task.
+const MIN_PER_TASK: usize = ContactCandidates::<1>::MIN_PER_TASK;
 
 /// Fuller's particle-type penalty contact with friction (numerics.md §12.1).
 #[derive(Debug, Clone)]
 pub struct PenaltyContact<const D: usize> {
     n_bodies: usize,
     /// Law per ordered body pair (A · n_bodies + B), symmetric; `None`: no contact.
-    laws: Vec<Option<PenaltyPairLaw>>,
+    laws: Vec<Option<PenaltyLaw>>,
     /// Kernel of each body (normal weights, updated-Lagrangian neighbour counts).
     kernels: Vec<AnyKernel>,
     /// Fully surrounded neighbour count of each body (set at the first evaluation).
@@ -218,7 +63,7 @@ impl<const D: usize> PenaltyContact<D> {
     /// symmetric, no diagonal); `kernels` per body, `body_of` per real particle. The resultant
     /// reported is the contact force on the lowest-index body that takes part.
     pub(crate) fn new(
-        laws: Vec<Option<PenaltyPairLaw>>,
+        laws: Vec<Option<PenaltyLaw>>,
         n_bodies: usize,
         kernels: Vec<AnyKernel>,
         body_of: &[u32],
@@ -230,9 +75,9 @@ impl<const D: usize> PenaltyContact<D> {
         let active = laws.iter().flatten();
         let min_reach = active
             .clone()
-            .map(|l| l.reach)
+            .map(PenaltyLaw::reach)
             .fold(f64::INFINITY, f64::min);
-        let max_zone = active.map(|l| l.range.hypot(l.reach)).fold(0.0, f64::max);
+        let max_zone = active.map(PenaltyLaw::zone_radius).fold(0.0, f64::max);
         let candidates =
             ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach);
         let n = candidates.len();
@@ -296,9 +141,10 @@ impl<const D: usize> PenaltyContact<D> {
         let p = at.particles;
         let position = |j: usize| p.positions0[j] + p.displacements[j];
         let (laws, n_bodies) = (&self.laws, self.n_bodies);
-        self.candidates.refresh(p, |_, bk, _, bj| {
-            laws[bk as usize * n_bodies + bj as usize].is_some()
-        });
+        self.candidates
+            .refresh(&p.positions0, &p.displacements, |_, bk, _, bj| {
+                laws[bk as usize * n_bodies + bj as usize].is_some()
+            });
         // 1. Same-type neighbour counts.
         let (kernels, body, parts) = (
             &self.kernels,
@@ -326,11 +172,7 @@ impl<const D: usize> PenaltyContact<D> {
             .par_iter_mut()
             .enumerate()
             .with_min_len(MIN_PER_TASK)
-            .for_each(|(k, s)| {
-                // A particle without live neighbours (failed, or cut loose) has no surface.
-                *s = count[k] > 0
-                    && (count[k] as f64) <= SURFACE_FRACTION * full[body[k] as usize] as f64;
-            });
+            .for_each(|(k, s)| *s = is_surface(count[k], full[body[k] as usize]));
         // 2. Outward normals of surface particles, from all live neighbours.
         let surface = &self.surface;
         self.normal
@@ -344,19 +186,9 @@ impl<const D: usize> PenaltyContact<D> {
                 }
                 let i = parts[k] as usize;
                 let kernel = &kernels[body[k] as usize];
-                let xi = position(i);
-                let mut direction = Vector::<D>::zeros();
-                Self::for_each_neighbour(at, i, kernel.support_radius(), |_, xj| {
-                    let d = xi - xj;
-                    let r = d.norm();
-                    if r > 0.0 {
-                        direction += d * (kernel.value(r) / r);
-                    }
-                });
-                let length = direction.norm();
-                if length > 0.0 && length.is_finite() {
-                    *n = direction / length;
-                }
+                let mut normal = OutwardNormal::new(position(i), kernel);
+                Self::for_each_neighbour(at, i, kernel.support_radius(), |_, xj| normal.add(xj));
+                *n = normal.unit();
             });
         self.prepared = true;
     }
@@ -385,7 +217,7 @@ impl<const D: usize> PenaltyContact<D> {
 
     /// Law between the bodies of participants `a` and `b`.
     #[inline]
-    fn law(&self, a: usize, b: usize) -> Option<&PenaltyPairLaw> {
+    fn law(&self, a: usize, b: usize) -> Option<&PenaltyLaw> {
         let body = self.candidates.body();
         self.laws[body[a] as usize * self.n_bodies + body[b] as usize].as_ref()
     }

@@ -6,12 +6,8 @@
 use super::{Effect, EffectContext};
 use rayon::prelude::*;
 use std::sync::Arc;
+use tlsph_contact::{wall_friction_acceleration, RigidPlane};
 use tlsph_math::Vector;
-
-/// Penalty stiffness in units of m (c0/h)²: the contact oscillator then has ω = 2 c0/h, so
-/// ω Δt = 2 C_cfl ≤ 1.6 for C_cfl ≤ 0.8 — inside the leap-frog limit ω Δt < 2 without
-/// reducing the CFL step. Penetration under a contact stress σ is about 0.36 (σ/M) Δx.
-const STIFFNESS_FACTOR: f64 = 4.0;
 
 /// Particles per rayon task of the wall loops.
 const MIN_PER_TASK: usize = 1024;
@@ -19,38 +15,12 @@ const MIN_PER_TASK: usize = 1024;
 /// Chunk of the fixed-order sums (stored energy).
 const CHUNK: usize = 4096;
 
-/// The plane and its per-particle penalty law, shared by the wall and its friction.
-#[derive(Debug)]
-struct WallGeometry<const D: usize> {
-    point: Vector<D>,
-    /// Unit normal into the half-space where particles may be.
-    normal: Vector<D>,
-    /// Per-particle penalty stiffness divided by mass, (STIFFNESS_FACTOR c0²/h²) \[1/s²\].
-    stiffness_per_mass: Vec<f64>,
-    /// Per-particle contact radius: half its body's spacing \[m\].
-    radius: Vec<f64>,
-}
-
-impl<const D: usize> WallGeometry<D> {
-    /// Penetration δ = Δx/2 − (x − point)·n̂ of particle `i` at `x`, or 0.
-    #[inline]
-    fn penetration(&self, i: usize, x: Vector<D>) -> f64 {
-        (self.radius[i] - (x - self.point).dot(&self.normal)).max(0.0)
-    }
-
-    /// Normal acceleration magnitude k δ of the penalty spring on particle `i` at `x`.
-    #[inline]
-    fn normal_acceleration(&self, i: usize, x: Vector<D>) -> f64 {
-        self.stiffness_per_mass[i] * self.penetration(i, x)
-    }
-}
-
 /// A rigid frictionless plane through `point` with unit `normal` pointing into the half-space
 /// where particles may be.
 #[derive(Debug, Clone)]
 pub struct RigidWall<const D: usize> {
     name: String,
-    geometry: Arc<WallGeometry<D>>,
+    geometry: Arc<RigidPlane<D>>,
     resultant: Vector<D>,
     /// Σ ½ k δ² of the last evaluation \[J\].
     stored: f64,
@@ -69,16 +39,7 @@ impl<const D: usize> RigidWall<D> {
         c0: &[f64],
         dx: &[f64],
     ) -> Self {
-        let geometry = WallGeometry {
-            point,
-            normal: normal.normalize(),
-            stiffness_per_mass: h
-                .iter()
-                .zip(c0)
-                .map(|(h, c)| STIFFNESS_FACTOR * c * c / (h * h))
-                .collect(),
-            radius: dx.iter().map(|d| 0.5 * d).collect(),
-        };
+        let geometry = RigidPlane::new(point, normal, h, c0, dx);
         Self {
             name: format!("wall_{name}"),
             geometry: Arc::new(geometry),
@@ -122,8 +83,8 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
                 for (k, a) in chunk.iter_mut().enumerate() {
                     let i = c * CHUNK + k;
                     let delta = wall.penetration(i, position(i));
-                    let a_n = wall.stiffness_per_mass[i] * delta;
-                    *a = wall.normal * a_n;
+                    let a_n = wall.stiffness_per_mass(i) * delta;
+                    *a = wall.normal() * a_n;
                     stored += 0.5 * p.masses[i] * a_n * delta;
                 }
                 stored
@@ -145,26 +106,17 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
     }
 }
 
-/// Coulomb friction of a rigid wall (numerics.md §13 `[C]`), applied right after the wall's
-/// normal force in the same step.
-///
-/// A touching particle (penetration δ > 0) has the normal acceleration a_n = k δ of the wall's
-/// spring. With v* its velocity after this step's earlier kicks and v*_t the part of v*
-/// tangential to the wall, the friction acceleration is
-///
-///   a_t = −min(μ a_n, |v*_t| / Δt_kick) v*_t / |v*_t|,
-///
-/// i.e. the Coulomb force μ m a_n against the sliding direction, unless a smaller force stops
-/// the tangential motion within this kick, in which case exactly that force is applied and the
-/// particle sticks (v_t^{n+½} = 0). The cap is what a rigid, fixed surface allows for every
-/// particle on its own: it needs no slip regularisation, no history and no time-step limit,
-/// and friction never reverses a particle's sliding direction. Its work −∫ Σ f·v dt (all
-/// dissipated) is booked in the `wall_<name>_friction` column; its resultant, the tangential
-/// force of the wall on the particles, is reported as `wall_<name>_friction`.
+/// Coulomb friction of a rigid wall (numerics.md §13 `[C]`,
+/// `tlsph_contact::wall_friction_acceleration`), applied right after the wall's normal force in
+/// the same step, so it sees this step's normal kick: the Coulomb force μ m a_n against the
+/// sliding direction, capped at the force that stops the tangential motion within the kick.
+/// Its work −∫ Σ f·v dt (all dissipated) is booked in the `wall_<name>_friction` column; its
+/// resultant, the tangential force of the wall on the particles, is reported as
+/// `wall_<name>_friction`.
 #[derive(Debug, Clone)]
 pub struct WallFriction<const D: usize> {
     name: String,
-    geometry: Arc<WallGeometry<D>>,
+    geometry: Arc<RigidPlane<D>>,
     /// Friction coefficient μ > 0.
     coefficient: f64,
     resultant: Vector<D>,
@@ -188,14 +140,7 @@ impl<const D: usize> Effect<D> for WallFriction<D> {
             .with_min_len(MIN_PER_TASK)
             .for_each(|(i, a)| {
                 let a_n = wall.normal_acceleration(i, p.positions0[i] + p.displacements[i]);
-                let v = p.velocities[i];
-                let v_t = v - wall.normal * v.dot(&wall.normal);
-                let speed = v_t.norm();
-                *a = if a_n > 0.0 && speed > 0.0 {
-                    v_t * (-(mu * a_n).min(speed / kick) / speed)
-                } else {
-                    Vector::zeros()
-                };
+                *a = wall_friction_acceleration(a_n, p.velocities[i], wall.normal(), mu, kick);
             });
     }
 

@@ -1,25 +1,25 @@
-//! Bookkeeping shared by the contact effects (numerics.md §12): which particles take part,
-//! their current positions, a Verlet list of candidate partners in the current configuration
-//! (rebuilt over a cell grid once a participant has moved half the skin), the deterministic
-//! chunked sum of a body's contact force, and the scatter of forces into accelerations.
+//! Who may touch whom: the particles that take part in a contact, their current positions, and
+//! a Verlet list of candidate partners in the current configuration (numerics.md §12), rebuilt
+//! over a cell grid once a participant has moved half the skin. Also the deterministic chunked
+//! sums, the scatter of forces into accelerations and the stiffness time-step vote that every
+//! contact law shares. Knows nothing about the force law.
 
-use crate::particles::Particles;
 use rayon::prelude::*;
 use tlsph_math::Vector;
 use tlsph_neighbours::CellGrid;
 
-/// Particles per parallel task.
-pub(super) const MIN_PER_TASK: usize = 256;
-
 /// Chunk length of the deterministic energy/force sums.
 const CHUNK: usize = 4096;
 
-/// Participants of a contact effect and their candidate partners (CSR, participant indices).
+/// Participants of a contact and their candidate partners (CSR, participant indices).
+///
+/// A participant is a particle whose body takes part; participants are numbered in ascending
+/// particle order, and every per-participant array of a contact law uses that numbering.
 #[derive(Debug, Clone)]
-pub(super) struct ContactCandidates<const D: usize> {
-    /// Global index of each participating particle (ascending).
+pub struct ContactCandidates<const D: usize> {
+    /// Particle index of each participant (ascending).
     participants: Vec<u32>,
-    /// Participant index of each real particle (`u32::MAX` if it takes no part).
+    /// Participant index of each particle (`u32::MAX` if it takes no part).
     local: Vec<u32>,
     /// Body of each participant.
     body: Vec<u32>,
@@ -40,14 +40,12 @@ pub(super) struct ContactCandidates<const D: usize> {
 }
 
 impl<const D: usize> ContactCandidates<D> {
-    /// Participants: the real particles whose body (`body_of`) satisfies `takes_part`;
-    /// candidates are searched within `reach + skin`.
-    pub(super) fn new(
-        body_of: &[u32],
-        takes_part: impl Fn(u32) -> bool,
-        reach: f64,
-        skin: f64,
-    ) -> Self {
+    /// Participants per parallel task of the loops over participants.
+    pub const MIN_PER_TASK: usize = 256;
+
+    /// Participants: the particles whose body (`body_of`, one entry per particle) satisfies
+    /// `takes_part`; candidates are searched within `reach + skin`.
+    pub fn new(body_of: &[u32], takes_part: impl Fn(u32) -> bool, reach: f64, skin: f64) -> Self {
         let mut local = vec![u32::MAX; body_of.len()];
         let mut participants = Vec::new();
         let mut body = Vec::new();
@@ -76,58 +74,65 @@ impl<const D: usize> ContactCandidates<D> {
     }
 
     /// Number of participants.
-    pub(super) fn len(&self) -> usize {
+    pub fn len(&self) -> usize {
         self.participants.len()
     }
 
-    /// Global particle index of each participant.
-    pub(super) fn participants(&self) -> &[u32] {
+    /// Whether no particle takes part.
+    pub fn is_empty(&self) -> bool {
+        self.participants.is_empty()
+    }
+
+    /// Particle index of each participant.
+    pub fn participants(&self) -> &[u32] {
         &self.participants
     }
 
     /// Body of each participant.
-    pub(super) fn body(&self) -> &[u32] {
+    pub fn body(&self) -> &[u32] {
         &self.body
     }
 
     /// Verlet skin \[m\].
-    pub(super) fn skin(&self) -> f64 {
+    pub fn skin(&self) -> f64 {
         self.skin
     }
 
     /// Current positions of the participants (as of the last [`Self::refresh`]).
-    pub(super) fn positions(&self) -> &[Vector<D>] {
+    pub fn positions(&self) -> &[Vector<D>] {
         &self.positions
     }
 
     /// Candidate partners (participant indices, ascending) of participant `k`.
     #[inline]
-    pub(super) fn of(&self, k: usize) -> &[u32] {
+    pub fn of(&self, k: usize) -> &[u32] {
         &self.candidates[self.offsets[k]..self.offsets[k + 1]]
     }
 
     /// Candidate-list rebuilds so far.
-    pub(super) fn rebuilds(&self) -> u64 {
+    pub fn rebuilds(&self) -> u64 {
         self.rebuilds
     }
 
-    /// Reads the participants' positions x = X + u from `p` and rebuilds the candidate lists
-    /// if any participant has moved more than half the skin since the last build (a NaN
-    /// position counts as moved). `accepts(k, body_k, j, body_j)` decides whether participant
-    /// `j` within the search radius is a candidate of `k`.
-    pub(super) fn refresh(
+    /// Reads the participants' positions x = X + u (`positions0` + `displacements`, one entry
+    /// per particle) and rebuilds the candidate lists if any participant has moved more than
+    /// half the skin since the last build (a NaN position counts as moved).
+    /// `accepts(k, body_k, j, body_j)` decides whether participant `j` within the search
+    /// radius is a candidate of `k`.
+    pub fn refresh(
         &mut self,
-        p: &Particles<D>,
+        positions0: &[Vector<D>],
+        displacements: &[Vector<D>],
         accepts: impl Fn(usize, u32, usize, u32) -> bool,
     ) {
         let parts = &self.participants;
         self.positions
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(Self::MIN_PER_TASK)
             .for_each(|(k, x)| {
                 let i = parts[k] as usize;
-                *x = p.positions0[i] + p.displacements[i];
+                *x = positions0[i] + displacements[i];
             });
         let half_skin_sq = 0.25 * self.skin * self.skin;
         let stale = self.positions_at_build.len() != self.positions.len()
@@ -146,7 +151,7 @@ impl<const D: usize> ContactCandidates<D> {
 
     /// Every accepted participant within the search radius, ascending. Allocates only the
     /// cell grid (and the lists if they grow). Non-finite positions give no candidates (the
-    /// step reports the non-finite state).
+    /// caller reports the non-finite state).
     fn rebuild(&mut self, accepts: impl Fn(usize, u32, usize, u32) -> bool) {
         self.offsets.clear();
         self.candidates.clear();
@@ -175,7 +180,7 @@ impl<const D: usize> ContactCandidates<D> {
     /// (Σ energy over all participants, Σ force over the reported body's participants), each
     /// summed in fixed chunks so the result does not depend on the thread count. `energy` may
     /// be empty (sum 0).
-    pub(super) fn totals(&mut self, energy: &[f64], force: &[Vector<D>]) -> (f64, Vector<D>) {
+    pub fn totals(&mut self, energy: &[f64], force: &[Vector<D>]) -> (f64, Vector<D>) {
         let (body, reported) = (&self.body, self.reported_body);
         (0..force.len().div_ceil(CHUNK))
             .into_par_iter()
@@ -198,9 +203,9 @@ impl<const D: usize> ContactCandidates<D> {
             })
     }
 
-    /// Writes a = f / m for every participant into `out` (indexed by real particle); other
-    /// entries are left as they are.
-    pub(super) fn scatter_accelerations(
+    /// Writes a = f / m for every participant into `out` (indexed by particle); other entries
+    /// are left as they are.
+    pub fn scatter_accelerations(
         &self,
         force: &[Vector<D>],
         masses: &[f64],
@@ -218,9 +223,11 @@ impl<const D: usize> ContactCandidates<D> {
             });
     }
 
-    /// Shortest stable step over the participants with positive stiffness:
-    /// min factor · sqrt(m_I / k_I), ties broken by the lower particle index.
-    pub(super) fn stiffness_time_step(
+    /// Shortest stable step over the participants with positive stiffness `stiffness[k]`
+    /// (numerics.md §7 `[C]`): min factor · sqrt(m_I / k_I) with the particle I, ties broken
+    /// by the lower particle index (a total order, so the result does not depend on how the
+    /// work is split).
+    pub fn stiffness_time_step(
         &self,
         stiffness: &[f64],
         masses: &[f64],
@@ -230,12 +237,12 @@ impl<const D: usize> ContactCandidates<D> {
         stiffness
             .par_iter()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(Self::MIN_PER_TASK)
             .filter(|(_, k)| **k > 0.0)
             .map(|(k, s)| {
                 let i = parts[k] as usize;
                 (factor * (masses[i] / s).sqrt(), i)
             })
-            .reduce_with(crate::simulation::min_by_value_then_index)
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
     }
 }

@@ -1,0 +1,44 @@
+//! Contact between SPH bodies in the current configuration (numerics.md §12–13). Pair laws and
+//! the bookkeeping of who may touch whom; knows nothing about stresses, bonds, time stepping or
+//! energy booking, which stay with the solver that drives it.
+//!
+//! * [`ContactCandidates`]: the particles that take part, their current positions, and a
+//!   Verlet list of candidate partners over a cell grid, rebuilt only once a participant has
+//!   moved half the skin; deterministic sums and the stiffness time-step vote.
+//! * [`PotentialLaw`]: the potential-type particle contact of numerics.md §12.2 (Vignjevic et
+//!   al.), f = a M* d0^{d−1} [(W(r)/W(d0))ⁿ − 1]₊ along the pair line, with its potential and
+//!   tangent stiffness.
+//! * [`PenaltyLaw`]: Fuller's particle-type penalty contact with Coulomb friction
+//!   (numerics.md §12.1, F §4.3–4.4), with the surface test [`is_surface`] and the outward
+//!   normal [`OutwardNormal`] it needs.
+//! * [`RigidPlane`]: a fixed rigid plane (an anvil) pushing back particles by a penalty
+//!   spring, and its Coulomb friction [`wall_friction_acceleration`] (numerics.md §13).
+//!
+//! Every law is a function of one pair (or one particle and the plane), evaluated identically
+//! from both ends, so a solver that gathers per particle gets equal and opposite forces bit
+//! for bit, whatever the thread count.
+
+#![warn(missing_docs)]
+
+mod candidates;
+mod penalty;
+mod potential;
+mod wall;
+
+pub use candidates::ContactCandidates;
+pub use penalty::{is_surface, OutwardNormal, PenaltyLaw, SURFACE_FRACTION};
+pub use potential::{PotentialLaw, PotentialPairState};
+pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
+pub use tlsph_math::Vector;
+pub use wall::{wall_friction_acceleration, RigidPlane, WALL_STIFFNESS_FACTOR};
+
+/// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list
+/// holds every pair within (largest reach + skin) and is rebuilt once any participant has
+/// moved by half the skin since the last build, so no pair that can touch is ever missing.
+/// Half a spacing keeps rebuilds to one every few steps even for a flyer at 0.1 c (it moves
+/// ≈ 0.1 · C_cfl · h per step) while adding only a few candidates per surface particle.
+pub const SKIN_FRACTION: f64 = 0.5;
+
+/// Safety factor of the contact time-step bound Δt ≤ 0.5 sqrt(m/k) (numerics.md §7 `[C]`),
+/// used with [`ContactCandidates::stiffness_time_step`].
+pub const DT_FACTOR: f64 = 0.5;

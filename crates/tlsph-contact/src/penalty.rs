@@ -1,0 +1,235 @@
+//! Fuller's particle-type penalty contact with Coulomb friction (numerics.md §12.1,
+//! F §4.3–4.4): the law of one surface particle I and one partner K of another body, the
+//! surface test and the outward normal. Pointwise; the solver supplies neighbour counts and
+//! neighbour positions.
+//!
+//! 1. **Surface detection** (F §4.3.1): I is a surface particle if its count of same-body
+//!    neighbours within the kernel support is at most [`SURFACE_FRACTION`] of the fully
+//!    surrounded count ([`is_surface`]).
+//! 2. **Normals** (F 4.1): n_I = Σ_J (x_I − x_J)/r_IJ W(r_IJ) over the live same-body
+//!    neighbours, normalised ([`OutwardNormal`]); it points out of the body.
+//! 3. **Interaction zone** (F §4.3.3): K is in contact with I when r⊥ = (x_K − x_I)·n̂_I lies in
+//!    [−d0, R) and the tangential offset t = |(x_K − x_I) − r⊥ n̂_I| < d0, d0 = ½(Δx_A + Δx_B).
+//!    In 2D this is Fuller's square; in 3D the zone is the cylinder of that radius `[C]` (a
+//!    cube aligned with n̂ alone has no defined orientation about it).
+//! 4. **Penalty force** (F 4.2 as corrected in numerics.md §12.1 `[C]`): the pair potential
+//!    U = Φ(r⊥) w(t), Φ = k_c [R ln(R/r⊥) − (R − r⊥)] (so −Φ' = k_c (R/r⊥ − 1), Fuller's
+//!    force; r⊥ floored at 0.05R), w = (1 − (t/d0)²)², with n̂_I held: f_K = −∇_K U, f_I = −f_K,
+//!    k_c = s E* d0^{d−1} (E* the smaller Young's modulus of the pair, s the scene's stiffness
+//!    factor, default 1), R = range · d0 (default 1). `[C]`: Fuller's zone switches a pair's
+//!    whole force on and off at its sides, which is not conservative: faces sliding past each
+//!    other pumped energy into the contact (a slider falling at v onto a plate while sliding at
+//!    5v rebounded at 1.36v). The weight and its small tangential force −Φ w' t̂ make each pair
+//!    conservative for a fixed normal.
+//! 5. **Friction** (F 4.3): f_K += −μ |f_n| v̂_t, v_t the part of v_K − v_I tangential to n̂_I,
+//!    v̂_t = v_t / max(|v_t|, 1e-6 c*) (c* the smaller sound speed).
+
+use tlsph_kernels::{AnyKernel, Kernel};
+use tlsph_math::Vector;
+
+/// Surface threshold: a particle with at most this fraction of the fully surrounded neighbour
+/// count is a surface particle (F §4.3.1: 75 %). The lattice check of numerics.md §12.1 puts a
+/// flat face at 58 % (2D) / 63 % (3D) and the row beneath it at 79 % / 86 %, so the threshold
+/// separates them in both dimensions.
+pub const SURFACE_FRACTION: f64 = 0.75;
+
+/// Penetration floor of the penalty law as a fraction of R (numerics.md §12.1 `[C]`): the force
+/// stops growing at 19 k_c once a particle is 95 % of the way through the range.
+const FLOOR_FRACTION: f64 = 0.05;
+
+/// Friction regularisation speed as a fraction of the smaller sound speed (numerics.md §12.1).
+const SLIP_FRACTION: f64 = 1e-6;
+
+/// Whether a particle with `count` live same-body neighbours is on the surface of a body whose
+/// fully surrounded particles have `full_count` (F §4.3.1). A particle without live neighbours
+/// (failed, or cut loose) has no surface.
+#[inline]
+pub fn is_surface(count: usize, full_count: usize) -> bool {
+    count > 0 && (count as f64) <= SURFACE_FRACTION * full_count as f64
+}
+
+/// Running sum of F 4.1, n_I ∝ Σ_J (x_I − x_J)/r_IJ W(r_IJ), over the live same-body
+/// neighbours of a surface particle I. `[C]`: Fuller's preferred variant leaves out neighbours
+/// that are surface particles themselves; on the stepped face of a lattice disc that tilted
+/// face normals by up to 34° (all neighbours: 4°), and a tilted normal puts a partner one
+/// spacing away up to 17 % inside the range, so all are used.
+#[derive(Debug, Clone, Copy)]
+pub struct OutwardNormal<'k, const D: usize> {
+    x_i: Vector<D>,
+    kernel: &'k AnyKernel,
+    sum: Vector<D>,
+}
+
+impl<'k, const D: usize> OutwardNormal<'k, D> {
+    /// An empty sum for the particle at `x_i` with its body's kernel.
+    pub fn new(x_i: Vector<D>, kernel: &'k AnyKernel) -> Self {
+        Self {
+            x_i,
+            kernel,
+            sum: Vector::zeros(),
+        }
+    }
+
+    /// Adds the neighbour at `x_j` (a coincident one has no direction and adds nothing).
+    #[inline]
+    pub fn add(&mut self, x_j: Vector<D>) {
+        let d = self.x_i - x_j;
+        let r = d.norm();
+        if r > 0.0 {
+            self.sum += d * (self.kernel.value(r) / r);
+        }
+    }
+
+    /// The unit outward normal, or zero when the sum has no direction.
+    pub fn unit(&self) -> Vector<D> {
+        let length = self.sum.norm();
+        if length > 0.0 && length.is_finite() {
+            self.sum / length
+        } else {
+            Vector::zeros()
+        }
+    }
+}
+
+/// Penalty law of one pair of bodies (numerics.md §12.1).
+#[derive(Debug, Clone, Copy)]
+pub struct PenaltyLaw {
+    /// k_c = s E* d0^{d−1} \[N\].
+    stiffness: f64,
+    /// Range R of the force along the normal \[m\].
+    range: f64,
+    /// d0 = ½(Δx_A + Δx_B): tangential half-width and penetration depth of the zone \[m\].
+    reach: f64,
+    /// Friction coefficient μ (0: frictionless).
+    friction: f64,
+    /// Regularisation speed 1e-6 c* of the friction direction \[m/s\].
+    slip_speed: f64,
+}
+
+impl PenaltyLaw {
+    /// The law of numerics.md §12.1 item 5 in dimension `D`: k_c = `stiffness_factor` ·
+    /// `youngs` · d0^{D−1} (E* the smaller Young's modulus of the pair), R = `range_factor` ·
+    /// d0, friction coefficient `friction` regularised at 1e-6 of `sound_speed` (the smaller
+    /// of the pair), d0 = `reach` = ½(Δx_A + Δx_B).
+    pub fn new<const D: usize>(
+        stiffness_factor: f64,
+        range_factor: f64,
+        friction: f64,
+        youngs: f64,
+        sound_speed: f64,
+        reach: f64,
+    ) -> Self {
+        Self {
+            stiffness: stiffness_factor * youngs * reach.powi(D as i32 - 1),
+            range: range_factor * reach,
+            reach,
+            friction,
+            slip_speed: SLIP_FRACTION * sound_speed,
+        }
+    }
+
+    /// Zone half-width and penetration depth d0 \[m\].
+    pub fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Farthest distance from I of a point of its zone, sqrt(R² + d0²) \[m\]: the candidate
+    /// search radius before the skin.
+    pub fn zone_radius(&self) -> f64 {
+        self.range.hypot(self.reach)
+    }
+
+    /// Whether K at offset d = x_K − x_I from surface particle I (normal n̂) is in I's zone,
+    /// and if so (r⊥, tangential offset vector t, |t|).
+    #[inline]
+    fn normal_offset<const D: usize>(
+        &self,
+        d: &Vector<D>,
+        normal: &Vector<D>,
+    ) -> Option<(f64, Vector<D>, f64)> {
+        let r_n = d.dot(normal);
+        if !(r_n >= -self.reach && r_n < self.range) {
+            return None;
+        }
+        let t = d - normal * r_n;
+        let t_len = t.norm();
+        (t_len < self.reach).then_some((r_n, t, t_len))
+    }
+
+    /// Tangential weight w(t) = (1 − (t/d0)²)² and dw/dt: 1 on I's axis, zero with zero slope
+    /// at the zone's side.
+    #[inline]
+    fn weight(&self, t: f64) -> (f64, f64) {
+        let s = t / self.reach;
+        let q = 1.0 - s * s;
+        (q * q, -4.0 * s * q / self.reach)
+    }
+
+    /// Normal force magnitude −dΦ/dr⊥, potential Φ(r⊥) and tangent stiffness at r⊥ (floored:
+    /// constant force below the floor).
+    #[inline]
+    fn normal_force(&self, r_n: f64) -> (f64, f64, f64) {
+        let floor = FLOOR_FRACTION * self.range;
+        let r = r_n.max(floor);
+        let force = self.stiffness * (self.range / r - 1.0);
+        let potential = self.stiffness * (self.range * (self.range / r).ln() - (self.range - r))
+            + force * (r - r_n);
+        (force, potential, self.stiffness * self.range / (r * r))
+    }
+
+    /// Pair potential U = Φ(r⊥) w(t) of K at offset `d` = x_K − x_I from surface particle I
+    /// with unit normal `normal` (0 outside the zone) \[J\] (numerics.md §12.1 item 4).
+    pub fn potential<const D: usize>(&self, d: &Vector<D>, normal: &Vector<D>) -> f64 {
+        self.normal_offset(d, normal).map_or(0.0, |(r_n, _, t)| {
+            self.weight(t).0 * self.normal_force(r_n).1
+        })
+    }
+
+    /// Force on K at offset `d` = x_K − x_I from surface particle I with unit normal `normal`,
+    /// with relative velocity v_K − v_I: penalty −∇_K U plus friction (numerics.md §12.1
+    /// items 4–5); `None` outside I's zone. I feels the opposite force.
+    #[inline]
+    pub fn force_on_partner<const D: usize>(
+        &self,
+        d: &Vector<D>,
+        normal: &Vector<D>,
+        relative_velocity: &Vector<D>,
+    ) -> Option<Vector<D>> {
+        let (r_n, t, t_len) = self.normal_offset(d, normal)?;
+        let (w, dw) = self.weight(t_len);
+        let (f, phi, _) = self.normal_force(r_n);
+        let f_n = w * f;
+        let mut force = normal * f_n;
+        // −∂(Φ w)/∂t: with n̂ held, the pair force is the gradient of Φ(r⊥) w(t).
+        if t_len > 0.0 {
+            force -= t * (phi * dw / t_len);
+        }
+        if self.friction > 0.0 {
+            let v_t = relative_velocity - normal * relative_velocity.dot(normal);
+            let speed = v_t.norm().max(self.slip_speed);
+            force -= v_t * (self.friction * f_n.abs() / speed);
+        }
+        Some(force)
+    }
+
+    /// Normal stiffness of the pair for the time-step vote: the tangent stiffness inside the
+    /// zone, the first-touch stiffness k_c/R within `skin` beyond R (it may touch during the
+    /// next step), else `None`.
+    #[inline]
+    pub fn vote_stiffness<const D: usize>(
+        &self,
+        d: &Vector<D>,
+        normal: &Vector<D>,
+        skin: f64,
+    ) -> Option<f64> {
+        if let Some((r_n, _, t)) = self.normal_offset(d, normal) {
+            return Some(self.weight(t).0 * self.normal_force(r_n).2);
+        }
+        let r_n = d.dot(normal);
+        let tangential = d - normal * r_n;
+        (r_n >= self.range
+            && r_n < self.range + skin
+            && tangential.norm_squared() <= self.reach * self.reach)
+            .then_some(self.stiffness / self.range)
+    }
+}

@@ -1,0 +1,56 @@
+//! The rigid plane's penalty spring and its Coulomb friction (numerics.md §13).
+
+use approx::assert_relative_eq;
+use tlsph_contact::{wall_friction_acceleration, RigidPlane, Vector, WALL_STIFFNESS_FACTOR};
+
+#[test]
+fn a_particle_is_pushed_back_by_its_half_spacing_penetration() {
+    // Plane y = 0 (normal given unnormalised), h = 1.2, c0 = 3, Δx = 1.
+    let plane = RigidPlane::<2>::new(
+        Vector::zeros(),
+        Vector::<2>::new(0.0, 2.0),
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    assert_eq!(plane.normal(), Vector::<2>::new(0.0, 1.0));
+    let k = WALL_STIFFNESS_FACTOR * 9.0 / 1.44;
+    assert_relative_eq!(plane.stiffness_per_mass(0), k, max_relative = 1e-15);
+    // Centre 0.3 above the plane: δ = 0.5 − 0.3.
+    assert_relative_eq!(
+        plane.penetration(0, Vector::<2>::new(7.0, 0.3)),
+        0.2,
+        max_relative = 1e-14
+    );
+    assert_relative_eq!(
+        plane.normal_acceleration(0, Vector::<2>::new(7.0, 0.3)),
+        0.2 * k,
+        max_relative = 1e-14
+    );
+    assert_eq!(plane.penetration(0, Vector::<2>::new(0.0, 0.5)), 0.0);
+    assert_eq!(plane.penetration(0, Vector::<2>::new(0.0, 4.0)), 0.0);
+}
+
+#[test]
+fn wall_friction_is_coulomb_until_it_would_stop_the_particle() {
+    let n = Vector::<3>::new(0.0, 0.0, 1.0);
+    // Sliding fast: μ a_n against the tangential velocity, the normal part ignored.
+    let a = wall_friction_acceleration(10.0, Vector::<3>::new(3.0, 4.0, -2.0), n, 0.5, 1e-3);
+    assert_relative_eq!(a, Vector::<3>::new(-3.0, -4.0, 0.0), max_relative = 1e-14);
+    // Sliding slowly: only what stops the motion within the kick (|v_t| / Δt = 1 < μ a_n).
+    let slow = wall_friction_acceleration(10.0, Vector::<3>::new(6e-4, 8e-4, 0.0), n, 0.5, 1e-3);
+    assert_relative_eq!(
+        slow,
+        Vector::<3>::new(-0.6, -0.8, 0.0),
+        max_relative = 1e-12
+    );
+    // Not touching, or not sliding: nothing.
+    assert_eq!(
+        wall_friction_acceleration(0.0, Vector::<3>::new(1.0, 0.0, 0.0), n, 0.5, 1e-3),
+        Vector::<3>::zeros()
+    );
+    assert_eq!(
+        wall_friction_acceleration(10.0, Vector::<3>::new(0.0, 0.0, -1.0), n, 0.5, 1e-3),
+        Vector::<3>::zeros()
+    );
+}
