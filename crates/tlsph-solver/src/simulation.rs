@@ -1886,11 +1886,7 @@ fn build_effects<const D: usize>(
         }
         effects.push(BookedEffect {
             effect: Box::new(build_penalty_contact(
-                model,
-                contact,
-                bodies,
-                kernels,
-                particles.positions0[..n].len(),
+                model, contact, bodies, kernels, prescribed,
             )?),
             energy: 0.0,
         });
@@ -2106,13 +2102,14 @@ fn contact_pairs<const D: usize>(
 /// every pair of different bodies): k_c = s E* d0^{d−1} with E* the smaller Young's modulus,
 /// R = range · d0, friction μ regularised at 1e-6 of the smaller sound speed. A body cannot be
 /// paired with itself (a particle type never contacts itself; use the potential law's
-/// self-contact).
+/// self-contact). A body whose every particle has every velocity component prescribed is
+/// driven: its surface is the master surface of its pairs.
 fn build_penalty_contact<const D: usize>(
     model: &Model<D>,
     contact: &crate::model::PenaltyContactDescription,
     bodies: &[BodyInfo],
     kernels: &[tlsph_kernels::AnyKernel],
-    n_real: usize,
+    prescribed: &[PrescribedSet<D>],
 ) -> Result<PenaltyContact<D>, SetupError> {
     let fail =
         |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
@@ -2159,11 +2156,25 @@ fn build_penalty_contact<const D: usize>(
         laws[a * nb + b] = Some(law);
         laws[b * nb + a] = Some(law);
     }
+    let n_real = bodies.last().map_or(0, |b| b.range.end);
+    let mut held = vec![[false; D]; n_real];
+    for set in prescribed {
+        for &i in &set.particles {
+            for (h, &c) in held[i].iter_mut().zip(&set.components) {
+                *h |= c;
+            }
+        }
+    }
+    let driven = bodies
+        .iter()
+        .map(|b| held[b.range.clone()].iter().all(|h| h.iter().all(|&c| c)))
+        .collect();
     Ok(PenaltyContact::new(
         laws,
         nb,
         kernels.to_vec(),
         &body_indices(bodies, n_real),
+        driven,
     ))
 }
 
@@ -2400,7 +2411,7 @@ mod penalty_contact_tests {
             &description,
             &sim.bodies,
             &sim.kernels,
-            sim.n_particles(),
+            &sim.prescribed,
         )
         .unwrap();
         let at = Configuration {

@@ -41,6 +41,9 @@ pub struct PenaltyContact<const D: usize> {
     kernels: Vec<AnyKernel>,
     /// Fully surrounded neighbour count of each body (set at the first evaluation).
     full_count: Vec<usize>,
+    /// Per body: its motion is entirely prescribed (every component of every particle), so its
+    /// surface is the master surface of its pairs (see `defines_normal`).
+    driven: Vec<bool>,
     /// Participants, their current positions and candidate partners (searched within the
     /// largest zone reach sqrt(R² + d0²) plus the skin).
     candidates: ContactCandidates<D>,
@@ -60,13 +63,15 @@ pub struct PenaltyContact<const D: usize> {
 
 impl<const D: usize> PenaltyContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
-    /// symmetric, no diagonal); `kernels` per body, `body_of` per real particle. The resultant
-    /// reported is the contact force on the lowest-index body that takes part.
+    /// symmetric, no diagonal); `kernels` per body, `body_of` per real particle, `driven` per
+    /// body (motion entirely prescribed). The resultant reported is the contact force on the
+    /// lowest-index body that takes part.
     pub(crate) fn new(
         laws: Vec<Option<PenaltyLaw>>,
         n_bodies: usize,
         kernels: Vec<AnyKernel>,
         body_of: &[u32],
+        driven: Vec<bool>,
     ) -> Self {
         let takes_part = |b: u32| {
             let row = b as usize * n_bodies;
@@ -86,6 +91,7 @@ impl<const D: usize> PenaltyContact<D> {
             laws,
             kernels,
             full_count: vec![0; n_bodies],
+            driven,
             candidates,
             count: vec![0; n],
             surface: vec![false; n],
@@ -194,14 +200,36 @@ impl<const D: usize> PenaltyContact<D> {
     }
 
     /// Whether surface participant `a` defines the normal of its pair with `b` (numerics.md
-    /// §12.1 `[C]`, in place of Fuller's multiple-normal refinement): `a` is a surface
-    /// particle and `b` is not a flatter one (a surface particle with more same-type
-    /// neighbours). The smoother surface of the two gives the contact normal, so a corner
-    /// pressed on a flat face is pushed along the face normal, not along its own diagonal
-    /// normal (which would push a frictionless slider sideways); two faces alike both act.
+    /// §12.1 `[C]`, in place of Fuller's multiple-normal refinement). `a` must be a surface
+    /// particle; against a surface particle `b`:
+    ///
+    /// - **A driven body is the master surface.** Of a body whose motion is entirely
+    ///   prescribed (a fixed wall, an indenter) and a deformable one, only the driven body's
+    ///   normal acts, as a rigid surface is the master in finite-element contact. Its normals
+    ///   do not change with the deformation, so each pair force is the gradient of a fixed
+    ///   potential of the deformable particle's position. A deformable particle's normal, held
+    ///   fixed for the force, turns as its neighbours move; the work of that turning is not
+    ///   conserved, and with the noisy surface of an updated-Lagrangian ball pressed on a wall
+    ///   it pumped 70 times the incident energy into the contact (taken out again by the
+    ///   artificial viscosity).
+    /// - **Otherwise the flatter surface defines it:** `b` must not have more same-type
+    ///   neighbours than `a`. A corner pressed on a flat face is then pushed along the face
+    ///   normal, not along its own diagonal normal (which would push a frictionless slider
+    ///   sideways); two faces alike both act.
     #[inline]
     fn defines_normal(&self, a: usize, b: usize) -> bool {
-        self.surface[a] && !(self.surface[b] && self.count[b] > self.count[a])
+        if !self.surface[a] {
+            return false;
+        }
+        if !self.surface[b] {
+            return true;
+        }
+        let body = self.candidates.body();
+        match (self.driven[body[a] as usize], self.driven[body[b] as usize]) {
+            (true, false) => true,
+            (false, true) => false,
+            _ => self.count[b] <= self.count[a],
+        }
     }
 
     /// Neighbour counts, surface flags and normals of the last evaluation, per participant
