@@ -8,6 +8,10 @@ use rayon::prelude::*;
 use tlsph_math::Vector;
 use tlsph_neighbours::CellGrid;
 
+/// Participants per parallel task of the loops over participants (here and in the solver's
+/// contact effects that gather per participant).
+pub const PARTICIPANTS_PER_TASK: usize = 256;
+
 /// Chunk length of the deterministic energy/force sums.
 const CHUNK: usize = 4096;
 
@@ -40,9 +44,6 @@ pub struct ContactCandidates<const D: usize> {
 }
 
 impl<const D: usize> ContactCandidates<D> {
-    /// Participants per parallel task of the loops over participants.
-    pub const MIN_PER_TASK: usize = 256;
-
     /// Participants: the particles whose body (`body_of`, one entry per particle) satisfies
     /// `takes_part`; candidates are searched within `reach + skin`.
     pub fn new(body_of: &[u32], takes_part: impl Fn(u32) -> bool, reach: f64, skin: f64) -> Self {
@@ -129,7 +130,7 @@ impl<const D: usize> ContactCandidates<D> {
         self.positions
             .par_iter_mut()
             .enumerate()
-            .with_min_len(Self::MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, x)| {
                 let i = parts[k] as usize;
                 *x = positions0[i] + displacements[i];
@@ -237,7 +238,7 @@ impl<const D: usize> ContactCandidates<D> {
         stiffness
             .par_iter()
             .enumerate()
-            .with_min_len(Self::MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .filter(|(_, k)| **k > 0.0)
             .map(|(k, s)| {
                 let i = parts[k] as usize;

@@ -25,7 +25,7 @@ mod penalty;
 mod potential;
 mod wall;
 
-pub use candidates::ContactCandidates;
+pub use candidates::{ContactCandidates, PARTICIPANTS_PER_TASK};
 pub use penalty::{is_surface, OutwardNormal, PenaltyLaw, SURFACE_FRACTION};
 pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};

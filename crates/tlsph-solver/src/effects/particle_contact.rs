@@ -16,7 +16,9 @@
 use super::{Configuration, Effect, EffectContext};
 use crate::particles::Particles;
 use rayon::prelude::*;
-use tlsph_contact::{ContactCandidates, PotentialLaw, DT_FACTOR, SKIN_FRACTION};
+use tlsph_contact::{
+    ContactCandidates, PotentialLaw, DT_FACTOR, PARTICIPANTS_PER_TASK, SKIN_FRACTION,
+};
 use tlsph_math::Vector;
 
 /// Potential-type contact between particles of different bodies (numerics.md §12.2).
@@ -99,7 +101,7 @@ impl<const D: usize> ParticleContact<D> {
             .zip(self.half_potential.par_iter_mut())
             .zip(self.stiffness.par_iter_mut())
             .enumerate()
-            .with_min_len(ContactCandidates::<D>::MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, ((f, e), s))| {
                 let (mut force, mut energy, mut stiffness) = (Vector::<D>::zeros(), 0.0, 0.0);
                 let xk = x[k];

@@ -23,13 +23,11 @@
 use super::{Configuration, Effect, EffectContext};
 use rayon::prelude::*;
 use tlsph_contact::{
-    is_surface, ContactCandidates, OutwardNormal, PenaltyLaw, DT_FACTOR, SKIN_FRACTION,
+    is_surface, ContactCandidates, OutwardNormal, PenaltyLaw, DT_FACTOR, PARTICIPANTS_PER_TASK,
+    SKIN_FRACTION,
 };
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
-
-/// Participants per parallel task.
-const MIN_PER_TASK: usize = ContactCandidates::<1>::MIN_PER_TASK;
 
 /// Fuller's particle-type penalty contact with friction (numerics.md §12.1).
 #[derive(Debug, Clone)]
@@ -161,7 +159,7 @@ impl<const D: usize> PenaltyContact<D> {
         self.count
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, c)| {
                 *c = 0;
                 Self::for_each_neighbour(at, parts[k] as usize, support(k), |_, _| *c += 1);
@@ -177,14 +175,14 @@ impl<const D: usize> PenaltyContact<D> {
         self.surface
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, s)| *s = is_surface(count[k], full[body[k] as usize]));
         // 2. Outward normals of surface particles, from all live neighbours.
         let surface = &self.surface;
         self.normal
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, n)| {
                 *n = Vector::zeros();
                 if !surface[k] {
@@ -271,7 +269,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         stiffness
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, s)| {
                 let mut sum = 0.0;
                 for &q in this.candidates.of(k) {
@@ -309,7 +307,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         self.velocity
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, v)| {
                 let i = parts[k] as usize;
                 *v = p.velocities[i] - p.accelerations[i] * (0.5 * ctx.kick);
@@ -320,7 +318,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         force
             .par_iter_mut()
             .enumerate()
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, f)| {
                 let mut sum = Vector::<D>::zeros();
                 for &q in this.candidates.of(k) {
