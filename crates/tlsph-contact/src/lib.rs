@@ -17,6 +17,22 @@
 //! Every law is a function of one pair (or one particle and the plane), evaluated identically
 //! from both ends, so a solver that gathers per particle gets equal and opposite forces bit
 //! for bit, whatever the thread count.
+//!
+//! ```
+//! use tlsph_contact::{ContactCandidates, KernelKind, PotentialLaw, Vector, SKIN_FRACTION};
+//!
+//! // Two particles of different bodies 0.8Δx apart, Δx = 1, h = 1.2, n = 4.
+//! let kernel = KernelKind::CubicSpline.build(2, 1.2).unwrap();
+//! let law = PotentialLaw::new(kernel, 1.0, 2.0, 4.0, 0.0);
+//! let positions = [Vector::<2>::new(0.0, 0.0), Vector::<2>::new(0.8, 0.0)];
+//! let displacements = [Vector::<2>::zeros(); 2];
+//! let mut list = ContactCandidates::new(&[0, 1], |_| true, law.d0(), SKIN_FRACTION);
+//! list.refresh(&positions, &displacements, |_, a, _, b| a != b);
+//! assert_eq!(list.of(0), &[1]);
+//! let state = law.evaluate(0.8);
+//! assert!(state.force > 0.0 && state.potential > 0.0);
+//! assert!(law.evaluate(law.d0()).force.abs() < 1e-12); // zero at the contact distance
+//! ```
 
 #![warn(missing_docs)]
 
