@@ -1704,6 +1704,23 @@ fn impose_on<const D: usize>(
     }
 }
 
+/// Per real particle, which velocity components some prescribed set holds (a particle may be
+/// in several sets: their components are merged).
+fn prescribed_components<const D: usize>(
+    prescribed: &[PrescribedSet<D>],
+    n_real: usize,
+) -> Vec<[bool; D]> {
+    let mut held = vec![[false; D]; n_real];
+    for set in prescribed {
+        for &i in &set.particles {
+            for (h, &c) in held[i].iter_mut().zip(&set.components) {
+                *h |= c;
+            }
+        }
+    }
+    held
+}
+
 /// Zeroes the prescribed components of a per-particle field (accelerations, or an effect's
 /// share of them).
 fn zero_prescribed<const D: usize>(prescribed: &[PrescribedSet<D>], field: &mut [Vector<D>]) {
@@ -1982,9 +1999,10 @@ fn build_body_force<const D: usize>(
                 message,
             })?;
     }
-    let held = prescribed
-        .iter()
-        .flat_map(|set| set.particles.iter().map(|&i| (i, set.components)));
+    let held = prescribed_components(prescribed, positions0.len())
+        .into_iter()
+        .enumerate()
+        .filter(|(_, mask)| mask.iter().any(|&c| c));
     Ok(BodyForce::new(
         b,
         ranges,
@@ -2157,14 +2175,7 @@ fn build_penalty_contact<const D: usize>(
         laws[b * nb + a] = Some(law);
     }
     let n_real = bodies.last().map_or(0, |b| b.range.end);
-    let mut held = vec![[false; D]; n_real];
-    for set in prescribed {
-        for &i in &set.particles {
-            for (h, &c) in held[i].iter_mut().zip(&set.components) {
-                *h |= c;
-            }
-        }
-    }
+    let held = prescribed_components(prescribed, n_real);
     let driven = bodies
         .iter()
         .map(|b| held[b.range.clone()].iter().all(|h| h.iter().all(|&c| c)))

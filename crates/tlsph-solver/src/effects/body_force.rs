@@ -53,8 +53,8 @@ struct RampState {
 
 impl<const D: usize> BodyForce<D> {
     /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged), minus
-    /// the prescribed components `held` (a particle may appear in several prescribed sets);
-    /// `start` holds the initial positions of the real particles.
+    /// the prescribed components `held` (ascending particle index, each particle once with its
+    /// merged mask); `start` holds the initial positions of the real particles.
     pub(crate) fn new(
         acceleration: Vector<D>,
         mut ranges: Vec<Range<usize>>,
@@ -64,22 +64,14 @@ impl<const D: usize> BodyForce<D> {
     ) -> Self {
         ranges.sort_by_key(|r| r.start);
         ranges.dedup();
-        let mut merged: Vec<(usize, [bool; D])> = Vec::new();
-        let mut held: Vec<_> = held.into_iter().collect();
-        held.sort_by_key(|&(i, _)| i);
-        for (i, mask) in held {
-            if !ranges.iter().any(|r| r.contains(&i)) {
-                continue;
-            }
-            match merged.last_mut() {
-                Some((last, m)) if *last == i => m.iter_mut().zip(mask).for_each(|(a, b)| *a |= b),
-                _ => merged.push((i, mask)),
-            }
-        }
+        let held = held
+            .into_iter()
+            .filter(|(i, _)| ranges.iter().any(|r| r.contains(i)))
+            .collect();
         Self {
             acceleration,
             ranges,
-            held: merged,
+            held,
             start,
             potential: 0.0,
             ramp: ramp.map(|ramp| RampState {

@@ -39,8 +39,8 @@ pub struct PenaltyContact<const D: usize> {
     kernels: Vec<AnyKernel>,
     /// Fully surrounded neighbour count of each body (set at the first evaluation).
     full_count: Vec<usize>,
-    /// Per body: its motion is entirely prescribed (every component of every particle), so its
-    /// surface is the master surface of its pairs (see `defines_normal`).
+    /// Per participant: its body's motion is entirely prescribed (every component of every
+    /// particle), so its surface is the master surface of its pairs (see `defines_normal`).
     driven: Vec<bool>,
     /// Participants, their current positions and candidate partners (searched within the
     /// largest zone reach sqrt(R² + d0²) plus the skin).
@@ -84,6 +84,11 @@ impl<const D: usize> PenaltyContact<D> {
         let candidates =
             ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach);
         let n = candidates.len();
+        let driven = candidates
+            .body()
+            .iter()
+            .map(|&b| driven[b as usize])
+            .collect();
         Self {
             n_bodies,
             laws,
@@ -216,18 +221,9 @@ impl<const D: usize> PenaltyContact<D> {
     ///   sideways); two faces alike both act.
     #[inline]
     fn defines_normal(&self, a: usize, b: usize) -> bool {
-        if !self.surface[a] {
-            return false;
-        }
-        if !self.surface[b] {
-            return true;
-        }
-        let body = self.candidates.body();
-        match (self.driven[body[a] as usize], self.driven[body[b] as usize]) {
-            (true, false) => true,
-            (false, true) => false,
-            _ => self.count[b] <= self.count[a],
-        }
+        self.surface[a]
+            && (!self.surface[b]
+                || (self.driven[b], self.count[b]) <= (self.driven[a], self.count[a]))
     }
 
     /// Neighbour counts, surface flags and normals of the last evaluation, per participant
