@@ -16,6 +16,7 @@ mod diagnostics;
 mod effects;
 mod error;
 mod fields;
+mod ghosts;
 mod model;
 mod particles;
 mod plasticity;

@@ -467,8 +467,11 @@ fn update<
             };
             let trial = q * s_old * q.transpose() + deviator(&d) * (2.0 * shear * dt);
             let energy_v = rho0 * *energy;
+            // The EOS is a state function of J: it reads the density carried across bond
+            // rebuilds (a neighbour's removal changes the estimate det F, not the volume).
+            let j_eos = j * step.jacobian_carry.map_or(1.0, |c| c[k]);
             let pressure = pressure_law
-                .pressure(p_old, d.trace(), dt, j, energy_v)
+                .pressure(p_old, d.trace(), dt, j_eos, energy_v)
                 .max(min_pressure);
             let temperature = point.temperature().unwrap_or(room_temperature);
             let rate = equivalent_strain_rate(&d);

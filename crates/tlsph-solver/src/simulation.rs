@@ -10,6 +10,7 @@ use crate::effects::{
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
+use crate::ghosts::{check_plane_sides, reflect, reflection_signs, Ghosts};
 use crate::model::{
     Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, VelocityRamp,
 };
@@ -130,6 +131,9 @@ pub struct Simulation<const D: usize> {
     kernels: Vec<tlsph_kernels::AnyKernel>,
     /// Failed particles, out of every sum (empty unless a failure model is declared).
     removed: Vec<bool>,
+    /// Per real particle, J / det F accumulated over the bond rebuilds after failures (all 1
+    /// until a neighbour fails; empty without failure): keeps the EOS density continuous.
+    jacobian_carry: Vec<f64>,
     /// Number of failed particles.
     failed_count: usize,
     /// Plastic state per body (empty for elastic bodies).
@@ -207,11 +211,26 @@ impl<const D: usize> Simulation<D> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let corrected = config.formulation == Formulation::TotalLagrangianCorrected;
+        // Updated-Lagrangian ghosts follow the current positions and are built with the first
+        // Verlet list; the reference bonds (for the stability metrics) then have none.
+        let updated_lagrangian = config.formulation == Formulation::UpdatedLagrangian;
+        let reference_planes: &[crate::model::SymmetryPlane] = if updated_lagrangian {
+            for info in &bodies {
+                check_plane_sides(
+                    &info.name,
+                    &particles.positions0[info.range.clone()],
+                    &model.effects.symmetry_planes,
+                )?;
+            }
+            &[]
+        } else {
+            &model.effects.symmetry_planes
+        };
         let (ghosts, bonds, correction) = build_reference(
             &bodies,
             &kernels,
             &mut particles,
-            &model.effects.symmetry_planes,
+            reference_planes,
             &[],
             corrected,
             true,
@@ -322,7 +341,6 @@ impl<const D: usize> Simulation<D> {
                 message: "XSPH cannot be combined with a failure model yet (its averages would keep failed particles in)".into(),
             });
         }
-        let updated_lagrangian = config.formulation == Formulation::UpdatedLagrangian;
         if updated_lagrangian {
             check_updated_lagrangian_effects(&model)?;
         } else if model.effects.artificial_stress.is_some() {
@@ -416,6 +434,11 @@ impl<const D: usize> Simulation<D> {
             xsph,
             updated,
             kernels,
+            jacobian_carry: if any_failure {
+                vec![1.0; n_real]
+            } else {
+                Vec::new()
+            },
             removed,
             failed_count: 0,
             config,
@@ -436,6 +459,7 @@ impl<const D: usize> Simulation<D> {
                 sim.set_initial_stress(b, stress)?;
             }
         }
+        sim.announce_reference_ghosts();
         // Prescribed velocities hold from t = 0.
         sim.impose_velocities(0.0);
         Ok(sim)
@@ -469,11 +493,24 @@ impl<const D: usize> Simulation<D> {
         self.ghosts.refresh_kinematics(&mut self.particles);
         match &mut self.updated {
             Some(updated) => {
-                if updated.refresh(&self.particles, &self.removed).is_err() {
-                    // The neighbour search only fails on non-finite positions.
-                    let first = self.particles.displacements.len();
-                    return Err(self.non_finite(step, first.saturating_sub(1)));
+                if updated.rebuild_due(&self.particles) {
+                    if !self.planes.is_empty() {
+                        rebuild_current_ghosts(
+                            updated,
+                            &mut self.ghosts,
+                            &mut self.particles,
+                            &mut self.removed,
+                            &mut self.effects,
+                            &self.planes,
+                        );
+                    }
+                    if updated.rebuild(&self.particles, &self.removed).is_err() {
+                        // The neighbour search only fails on non-finite positions.
+                        let first = self.particles.displacements.len();
+                        return Err(self.non_finite(step, first.saturating_sub(1)));
+                    }
                 }
+                updated.evaluate_kernel();
                 updated.gather_kinematics(&mut self.particles, dt);
             }
             None => gather_kinematics(
@@ -493,11 +530,16 @@ impl<const D: usize> Simulation<D> {
             };
             match &self.reference {
                 None => body.update(
-                    &constitutive_step(info, dt, &InitialReference),
+                    &constitutive_step(info, dt, &InitialReference, &self.jacobian_carry),
                     &mut self.particles,
                 ),
                 Some(reference) => body.update(
-                    &constitutive_step(info, dt, &reference.jacobian[info.range.clone()]),
+                    &constitutive_step(
+                        info,
+                        dt,
+                        &reference.jacobian[info.range.clone()],
+                        &self.jacobian_carry,
+                    ),
                     &mut self.particles,
                 ),
             }
@@ -563,6 +605,8 @@ impl<const D: usize> Simulation<D> {
             self.ghosts.mirror(&mut xsph.velocity);
         }
         if let Some(updated) = &mut self.updated {
+            // Neighbours' v^{n+½} (ghosts: their parents' after every kick and imposition).
+            self.ghosts.refresh_motion(&mut self.particles);
             updated.update_xsph(&self.particles);
             if let Some((_, transport)) = &mut updated.xsph {
                 impose_on(&self.prescribed, transport, velocity_time);
@@ -690,7 +734,24 @@ impl<const D: usize> Simulation<D> {
                 .effect
                 .reference_changed(&self.particles, &self.bonds);
         }
+        self.announce_reference_ghosts();
         Ok(())
+    }
+
+    /// Tells the effects the body of every particle, total-Lagrangian symmetry ghosts included
+    /// (at setup and after a reference update rebuilt them); nothing to tell without ghosts.
+    fn announce_reference_ghosts(&mut self) {
+        if self.ghosts.parent.is_empty() {
+            return;
+        }
+        let n_real = self.ghosts.first;
+        let mut body = body_indices(&self.bodies, n_real);
+        for &parent in &self.ghosts.parent {
+            body.push(body[parent]);
+        }
+        for booked in &mut self.effects {
+            booked.effect.ghosts_rebuilt(&body);
+        }
     }
 
     fn remove_newly_failed(&mut self) {
@@ -717,7 +778,13 @@ impl<const D: usize> Simulation<D> {
             }
         }
         if let Some(updated) = &mut self.updated {
-            updated.mark_stale();
+            // The failed particles leave this step's force sums already: the pair list at x^n
+            // is rebuilt without them (a non-finite position, reported by the step's checks,
+            // leaves it to the next step).
+            match updated.rebuild(&self.particles, &self.removed) {
+                Ok(()) => updated.evaluate_kernel(),
+                Err(_) => updated.mark_stale(),
+            }
         }
         self.failed_count += newly.len();
         let bodies = &self.bodies;
@@ -732,6 +799,47 @@ impl<const D: usize> Simulation<D> {
             self.config.formulation == Formulation::TotalLagrangianCorrected,
             &self.ghosts,
         );
+        self.carry_jacobians();
+    }
+
+    /// After a bond rebuild (failures): for every surviving particle whose neighbour set
+    /// changed, J / det F ← (J / det F)·det F_old / det F_new at the same displacements u^n, so
+    /// the density the EOS reads stays continuous (DJ/Dt = J tr D, numerics.md §4.3) instead of
+    /// jumping with the kernel estimate; a jump would change p(J, e) without any p dV work
+    /// booked in e. F^n of the old bonds is still in `deformation_gradient` (gathered this
+    /// step); the next gather replaces it.
+    fn carry_jacobians(&mut self) {
+        if self.jacobian_carry.is_empty() || self.updated.is_some() {
+            return;
+        }
+        let (bonds, removed) = (&self.bonds, &self.removed);
+        let p = &mut self.particles;
+        let u = &p.displacements;
+        self.jacobian_carry
+            .par_iter_mut()
+            .zip(p.deformation_gradient.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (carry, f))| {
+                if removed[i] {
+                    return;
+                }
+                let mut f_new = tlsph_math::Tensor::<D>::identity();
+                let r = bonds.range(i);
+                for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
+                    f_new += tlsph_math::outer(&(u[j as usize] - u[i]), g);
+                }
+                if f_new == *f {
+                    return;
+                }
+                let det_old = tlsph_math::embed_with_identity(&*f).determinant();
+                let det_new = tlsph_math::embed_with_identity(&f_new).determinant();
+                if det_old > 0.0 && det_new > 0.0 {
+                    *carry *= det_old / det_new;
+                }
+                *f = f_new;
+            });
+        // The ghosts' F follows their parents' regathered F (hourglass control reads it).
+        self.ghosts.refresh_stress(&mut self.particles);
     }
 
     /// Geometric health of the reference bonds at the current time (for stability and
@@ -918,10 +1026,14 @@ impl<const D: usize> Simulation<D> {
     fn apply_effects(&mut self, kick: f64) {
         for (booked, share) in self.effects.iter_mut().zip(&mut self.effect_shares) {
             share.fill(Vector::zeros());
+            // Effects read their neighbours' motion, symmetry ghosts included: mirror the
+            // parents' after the previous kick.
+            self.ghosts.refresh_motion(&mut self.particles);
             let ctx = EffectContext {
                 particles: &self.particles,
                 bonds: &self.bonds,
                 pairs: self.updated.as_ref().map(|u| &u.pairs),
+                removed: &self.removed,
                 kick,
                 time: self.time,
             };
@@ -1022,6 +1134,11 @@ impl<const D: usize> Simulation<D> {
 
     /// (body name, local index) of a global particle index.
     fn locate(&self, i: usize) -> (String, usize) {
+        // A symmetry ghost stands for its parent.
+        let i = match i.checked_sub(self.ghosts.first) {
+            Some(g) if g < self.ghosts.parent.len() => self.ghosts.parent[g],
+            _ => i,
+        };
         let info = self
             .bodies
             .iter()
@@ -1284,90 +1401,6 @@ impl<const D: usize> Simulation<D> {
     }
 }
 
-/// Symmetry ghosts: particle `first + g` mirrors real particle `parent[g]` with component
-/// signs `signs[g]` (numerics.md §13.1: u_g = M u_p, v_g = M v_p, P_g = M P_p M).
-#[derive(Debug, Clone, Default)]
-struct Ghosts<const D: usize> {
-    first: usize,
-    parent: Vec<usize>,
-    signs: Vec<Vector<D>>,
-    /// Reflection mask of each ghost (bit k: plane k).
-    mask: Vec<u32>,
-    /// Ghost index of (real parent, mask).
-    of: std::collections::HashMap<(usize, u32), usize>,
-}
-
-impl<const D: usize> crate::bonds::MirrorMap<D> for Ghosts<D> {
-    fn mirror(&self, p: usize, j: usize) -> Option<(usize, usize, Vector<D>)> {
-        if self.parent.is_empty() || j < self.first {
-            return None;
-        }
-        let k = j - self.first;
-        let image = *self.of.get(&(p, self.mask[k]))?;
-        Some((self.parent[k], image, self.signs[k]))
-    }
-}
-
-impl<const D: usize> Ghosts<D> {
-    /// Index of the first ghost, or `n` when there are none.
-    fn first_or(&self, n: usize) -> usize {
-        if self.parent.is_empty() {
-            n
-        } else {
-            self.first
-        }
-    }
-
-    /// Mirrors a per-particle vector field (e.g. XSPH velocities) from the parents.
-    fn mirror(&self, field: &mut [Vector<D>]) {
-        if self.parent.is_empty() {
-            return;
-        }
-        let (real, ghost) = field.split_at_mut(self.first);
-        ghost.par_iter_mut().enumerate().for_each(|(g, x)| {
-            *x = real[self.parent[g]].component_mul(&self.signs[g]);
-        });
-    }
-
-    /// Mirrors displacements and velocities from the parents (gather per ghost).
-    fn refresh_kinematics(&self, p: &mut Particles<D>) {
-        if self.parent.is_empty() {
-            return;
-        }
-        let (real_u, ghost_u) = p.displacements.split_at_mut(self.first);
-        let (real_v, ghost_v) = p.velocities.split_at_mut(self.first);
-        ghost_u
-            .par_iter_mut()
-            .zip(ghost_v.par_iter_mut())
-            .enumerate()
-            .for_each(|(g, (u, v))| {
-                let (parent, signs) = (self.parent[g], self.signs[g]);
-                *u = real_u[parent].component_mul(&signs);
-                *v = real_v[parent].component_mul(&signs);
-            });
-    }
-
-    /// Mirrors first Piola–Kirchhoff and Cauchy stress from the parents.
-    fn refresh_stress(&self, p: &mut Particles<D>) {
-        if self.parent.is_empty() {
-            return;
-        }
-        let (real_p, ghost_p) = p.pk1.split_at_mut(self.first);
-        let (real_s, ghost_s) = p.stress.split_at_mut(self.first);
-        ghost_p
-            .par_iter_mut()
-            .zip(ghost_s.par_iter_mut())
-            .enumerate()
-            .for_each(|(g, (pk1, sigma))| {
-                let (parent, signs) = (self.parent[g], self.signs[g]);
-                // (M A M)_kl = s_k s_l A_kl for a diagonal reflection M = diag(s).
-                *pk1 = real_p[parent].map_with_location(|k, l, x| x * signs[k] * signs[l]);
-                let sign = |k: usize| if k < D { signs[k] } else { 1.0 };
-                *sigma = real_s[parent].map_with_location(|k, l, x| x * sign(k) * sign(l));
-            });
-    }
-}
-
 /// XSPH (numerics.md §10.4, TL variant): v̂_I = v_I + ε Σ_J V0_J (v_J − v_I) W̃_IJ with the
 /// Shepard-normalised reference kernel W̃_IJ = W0_IJ / S_I. Particles drift with v̂ and Ḟ is
 /// built from v̂, so u stays the time integral of the velocity that F sees.
@@ -1439,6 +1472,7 @@ fn constitutive_step<'a, R: ReferenceJacobian + ?Sized>(
     info: &BodyInfo,
     dt: f64,
     reference_jacobian: &'a R,
+    jacobian_carry: &'a [f64],
 ) -> ConstitutiveStep<'a, R> {
     ConstitutiveStep {
         range: info.range.clone(),
@@ -1447,6 +1481,7 @@ fn constitutive_step<'a, R: ReferenceJacobian + ?Sized>(
         smoothing_length: info.smoothing_length,
         sound_speed0: info.sound_speed0,
         reference_jacobian,
+        jacobian_carry: (!jacobian_carry.is_empty()).then(|| &jacobian_carry[info.range.clone()]),
     }
 }
 
@@ -1491,6 +1526,33 @@ impl BodyUpdate<'_> {
                 self.damage,
             ),
         }
+    }
+}
+
+/// Updated-Lagrangian symmetry ghosts at a Verlet-list rebuild (numerics.md §13.1 at the
+/// current positions): the ghosts are rebuilt for the surviving particles within the list's
+/// search radius of the planes, the failure flags follow the new particle count (ghosts start
+/// alive: only survivors are mirrored), and the formulation and the effects learn each ghost's
+/// body.
+fn rebuild_current_ghosts<const D: usize>(
+    updated: &mut UpdatedLagrangian<D>,
+    ghosts: &mut Ghosts<D>,
+    particles: &mut Particles<D>,
+    removed: &mut Vec<bool>,
+    effects: &mut [BookedEffect<D>],
+    planes: &[crate::model::SymmetryPlane],
+) {
+    let n_real = ghosts.first_or(particles.len());
+    let flags: &[bool] = removed;
+    let alive = |i: usize| flags.is_empty() || !flags[i];
+    ghosts.rebuild_current(particles, n_real, planes, updated.search_radius(), alive);
+    if !removed.is_empty() {
+        removed.truncate(n_real);
+        removed.resize(particles.len(), false);
+    }
+    updated.set_ghost_parents(n_real, &ghosts.parent);
+    for booked in effects {
+        booked.effect.ghosts_rebuilt(updated.particle_bodies());
     }
 }
 
@@ -1587,33 +1649,8 @@ fn mirror_body<const D: usize>(
     };
     let reals = &particles.positions0[info.range.clone()];
     let n_real = reals.len();
-    for plane in planes.iter().filter(|_| check_sides) {
-        if plane.axis >= D || !plane.position.is_finite() {
-            return Err(SetupError::InvalidConfig {
-                field: "symmetry_plane",
-                message: format!(
-                    "a plane normal to axis {} at {} does not exist in {D}D",
-                    plane.axis, plane.position
-                ),
-            });
-        }
-        // The side of the first particle is the body's side; name the first one off it.
-        let side = |x: &Vector<D>| (x[plane.axis] - plane.position).signum();
-        let body_side = reals.first().map_or(1.0, side);
-        let off_side = reals
-            .iter()
-            .position(|x| x[plane.axis] == plane.position || side(x) != body_side);
-        if let Some(k) = off_side {
-            return Err(SetupError::InvalidBody {
-                body: info.name.clone(),
-                message: format!(
-                    "has particles on both sides of, or on, the symmetry plane x[{}] = {} (particle {k} at {:?})",
-                    plane.axis,
-                    plane.position,
-                    reals[k].as_slice()
-                ),
-            });
-        }
+    if check_sides {
+        check_plane_sides(&info.name, reals, planes)?;
     }
     // How far particles have drifted across each plane (0 at setup): a particle within
     // support of the ghost of a drifted particle needs a ghost of its own, so the band of
@@ -1629,18 +1666,8 @@ fn mirror_body<const D: usize>(
                 .fold(0.0, f64::max)
         })
         .collect();
-    let n_masks = 1usize << planes.len();
-    let signs: Vec<Vector<D>> = (0..n_masks)
-        .map(|mask| {
-            let mut s = Vector::<D>::repeat(1.0);
-            for (k, plane) in planes.iter().enumerate() {
-                if mask & (1 << k) != 0 {
-                    s[plane.axis] = -s[plane.axis];
-                }
-            }
-            s
-        })
-        .collect();
+    let signs = reflection_signs::<D>(planes);
+    let n_masks = signs.len();
     let mut positions0 = reals.to_vec();
     let mut volumes0 = particles.volumes0[info.range.clone()].to_vec();
     let mut ghosts = Vec::new();
@@ -1654,12 +1681,7 @@ fn mirror_body<const D: usize>(
             if !near {
                 continue;
             }
-            let mut image = *x;
-            for (k, plane) in planes.iter().enumerate() {
-                if mask & (1 << k) != 0 {
-                    image[plane.axis] = 2.0 * plane.position - image[plane.axis];
-                }
-            }
+            let image = reflect(x, planes, mask);
             ghost_of.insert((i, mask as u32), positions0.len());
             ghosts.push((i, mask as u32));
             positions0.push(image);
@@ -2236,12 +2258,6 @@ fn check_updated_lagrangian_effects<const D: usize>(model: &Model<D>) -> Result<
         return refuse(
             "hourglass_control",
             "it corrects the reference-bond F of TLSPH; use artificial_viscosity",
-        );
-    }
-    if !model.effects.symmetry_planes.is_empty() {
-        return refuse(
-            "symmetry_plane",
-            "mirror particles are built once from the reference configuration; model the full body",
         );
     }
     Ok(())

@@ -172,6 +172,9 @@ pub(crate) struct ConstitutiveStep<'a, R: ReferenceJacobian + ?Sized = InitialRe
     pub sound_speed0: f64,
     /// det F0 of the current reference configuration (numerics.md §4 `[C]` reference update).
     pub reference_jacobian: &'a R,
+    /// Per body-local particle: J / det F carried across neighbour-set rebuilds after failures
+    /// (`None` without failure), so the EOS sees a continuous density (numerics.md §4.3, §9.3).
+    pub jacobian_carry: Option<&'a [f64]>,
 }
 
 /// Artificial pressure added to the force-driving stress (numerics.md §10.2).

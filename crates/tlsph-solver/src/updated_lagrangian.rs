@@ -4,9 +4,12 @@
 //!
 //! The scheme shares the time integrator and every constitutive update with TLSPH. Per step:
 //!
-//! 1. [`UpdatedLagrangian::refresh`]: rebuild the Verlet list if any particle has moved more
-//!    than half the skin since the last build, then evaluate ∇_I W_IJ at x^n for every listed
-//!    pair (zero beyond the support).
+//! 1. [`UpdatedLagrangian::rebuild_due`] / [`UpdatedLagrangian::rebuild`]: rebuild the
+//!    Verlet list if any particle has moved more than half the skin since the last build (with
+//!    symmetry planes the caller first remakes the mirror particles at x^n, numerics.md §13.1;
+//!    they join the list as neighbours and own no pairs), then
+//!    [`UpdatedLagrangian::evaluate_kernel`]: ∇_I W_IJ at x^n for every listed pair (zero
+//!    beyond the support).
 //! 2. [`UpdatedLagrangian::gather_kinematics`]: the velocity gradient in Fuller's
 //!    density-weighted form L_I = −(1/ρ_I) Σ_J m_J (v_I − v_J) ⊗ ∇_I W_IJ (F 2.14, 2.47),
 //!    whose trace is exactly the continuity equation Dρ_I/Dt = Σ_J m_J (v_I − v_J)·∇_I W_IJ
@@ -60,7 +63,9 @@ impl<const D: usize> CurrentPairs<D> {
 /// State of the updated-Lagrangian formulation (allocated only when a scene selects it).
 #[derive(Debug, Clone)]
 pub(crate) struct UpdatedLagrangian<const D: usize> {
-    /// Body of each particle.
+    /// Number of real particles (symmetry ghosts follow them).
+    n_real: usize,
+    /// Body of each particle (ghosts: their parent's).
     body: Vec<u32>,
     /// Kernel interaction group of each particle (`EffectsDescription::kernel_groups`, by
     /// default the material index): only equal groups interact.
@@ -109,6 +114,7 @@ impl<const D: usize> UpdatedLagrangian<D> {
             .fold(0.0, f64::max);
         let skin = SKIN_FRACTION * min_h;
         Self {
+            n_real: n,
             body,
             group,
             kernels,
@@ -135,29 +141,67 @@ impl<const D: usize> UpdatedLagrangian<D> {
         self.stale = true;
     }
 
-    /// Step 1: rebuilds the Verlet list when needed and evaluates the kernel at x^n.
-    /// `removed` flags failed particles (empty when no failure model is declared).
-    pub fn refresh(&mut self, p: &Particles<D>, removed: &[bool]) -> Result<(), String> {
+    /// Search radius of the Verlet list (largest support + skin) \[length\]: also how far
+    /// from a symmetry plane a particle gets a mirror image.
+    pub fn search_radius(&self) -> f64 {
+        self.search_radius
+    }
+
+    /// Step 1a: takes the current positions x^n = X + u of every particle (ghosts included)
+    /// and returns whether the Verlet list must be rebuilt: after failures, at the first step,
+    /// or once any particle has moved more than half the skin since the last build.
+    pub fn rebuild_due(&mut self, p: &Particles<D>) -> bool {
+        self.take_positions(p);
+        let half_skin_sq = 0.25 * self.skin * self.skin;
+        self.stale
+            || self
+                .positions
+                .par_iter()
+                .zip(self.positions_at_build.par_iter())
+                .any(|(x, x_b)| (x - x_b).norm_squared() > half_skin_sq)
+    }
+
+    fn take_positions(&mut self, p: &Particles<D>) {
+        self.positions.resize(p.len(), Vector::zeros());
         self.positions
             .par_iter_mut()
             .zip(p.positions0.par_iter().zip(p.displacements.par_iter()))
             .with_min_len(MIN_PARTICLES_PER_TASK)
             .for_each(|(x, (x0, u))| *x = x0 + u);
-        let half_skin_sq = 0.25 * self.skin * self.skin;
-        let moved_too_far = self.stale
-            || self
-                .positions
-                .par_iter()
-                .zip(self.positions_at_build.par_iter())
-                .any(|(x, x_b)| (x - x_b).norm_squared() > half_skin_sq);
-        if moved_too_far {
-            self.rebuild(removed)?;
-        }
-        self.evaluate_kernel();
-        Ok(())
     }
 
-    fn rebuild(&mut self, removed: &[bool]) -> Result<(), String> {
+    /// The symmetry ghosts were rebuilt (`Ghosts::rebuild_current`): particle `n_real + g`
+    /// now mirrors `parents[g]` and takes its body and interaction group; the per-particle
+    /// scratch follows the new particle count.
+    pub fn set_ghost_parents(&mut self, n_real: usize, parents: &[usize]) {
+        for field in [&mut self.body, &mut self.group] {
+            field.truncate(n_real);
+            for &parent in parents {
+                let value = field[parent];
+                field.push(value);
+            }
+        }
+        let n = n_real + parents.len();
+        self.stress_over_density2.resize(n, Tensor::zeros());
+        if let Some((_, vhat)) = &mut self.xsph {
+            vhat.resize(n, Vector::zeros());
+        }
+    }
+
+    /// Body of every particle (ghosts: their parent's).
+    pub fn particle_bodies(&self) -> &[u32] {
+        &self.body
+    }
+
+    /// Step 1b: rebuilds the Verlet list at x^n for the current particles (ghosts included;
+    /// pairs are owned by real particles only, since only they gather). `removed` flags failed
+    /// particles (empty when no failure model is declared).
+    pub fn rebuild(&mut self, p: &Particles<D>, removed: &[bool]) -> Result<(), String> {
+        self.take_positions(p);
+        self.build_list(removed)
+    }
+
+    fn build_list(&mut self, removed: &[bool]) -> Result<(), String> {
         let list =
             build_neighbour_list(&self.positions, self.search_radius).map_err(|e| e.to_string())?;
         let alive = |i: usize| removed.is_empty() || !removed[i];
@@ -167,7 +211,8 @@ impl<const D: usize> UpdatedLagrangian<D> {
         self.pairs.owner.clear();
         self.pairs.offsets.push(0);
         for i in 0..n {
-            if alive(i) {
+            // Ghosts (index n_real on) own no pairs: they never gather.
+            if i < self.n_real && alive(i) {
                 let group = self.group[i];
                 self.pairs.neighbours.extend(
                     list.neighbours_of(i)
@@ -192,8 +237,9 @@ impl<const D: usize> UpdatedLagrangian<D> {
         Ok(())
     }
 
-    /// ∇_I W_IJ (and W_IJ when needed) at x^n for every pair (one independent task per pair).
-    fn evaluate_kernel(&mut self) {
+    /// Step 1c: ∇_I W_IJ (and W_IJ when needed) at x^n for every pair (one independent task
+    /// per pair).
+    pub fn evaluate_kernel(&mut self) {
         let x = &self.positions;
         let (body, kernels) = (&self.body, &self.kernels);
         let pairs = &mut self.pairs;

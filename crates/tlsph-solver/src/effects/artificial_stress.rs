@@ -20,7 +20,7 @@ pub struct MonaghanArtificialStress {
     /// Per body: whether its particles can feel the term (it carries R or shares a kernel
     /// group with a body that does).
     feels: Vec<bool>,
-    /// Body index of each particle.
+    /// Body index of each particle (updated-Lagrangian symmetry ghosts included).
     body: Vec<u32>,
     /// W(Δx) of each body (Δx its initial spacing).
     reference_value: Vec<f64>,
@@ -58,6 +58,13 @@ impl<const D: usize> Effect<D> for MonaghanArtificialStress {
 
     fn name(&self) -> &str {
         "artificial_stress"
+    }
+
+    fn ghosts_rebuilt(&mut self, body: &[u32]) {
+        self.body.clear();
+        self.body.extend_from_slice(body);
+        // A ghost's R is computed from its mirrored stress: M R M.
+        self.correction.resize(body.len(), Tensor3::zeros());
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {

@@ -3,7 +3,7 @@
 //! deformation gradients predict. Pairwise equal and opposite (momentum conserving); its work
 //! is booked separately in the energy balance.
 
-use super::{Effect, EffectContext};
+use super::{alive, Effect, EffectContext};
 use crate::bonds::{Bonds, PairKernel};
 use crate::particles::Particles;
 use rayon::prelude::*;
@@ -102,17 +102,23 @@ impl<const D: usize> Effect<D> for HourglassControl {
         let b = ctx.bonds;
         let weight = &self.bond_weight;
         let factor = &self.particle_factor;
-        let n_real = out.len();
+        let removed = ctx.removed;
         out.par_iter_mut()
             .enumerate()
             .with_min_len(256)
             .for_each(|(i, a)| {
+                if !alive(removed, i) {
+                    *a = Vector::zeros();
+                    return;
+                }
                 let xi = p.positions0[i] + p.displacements[i];
                 let mut force = Vector::<D>::zeros();
                 let r = b.range(i);
+                // Bonds to symmetry ghosts count (their F is the mirrored F of the parent),
+                // bonds to failed particles do not.
                 for (k, &j) in r.clone().zip(&b.neighbours[r]) {
                     let j = j as usize;
-                    if j >= n_real {
+                    if !alive(removed, j) {
                         continue;
                     }
                     let x_ij = xi - (p.positions0[j] + p.displacements[j]);

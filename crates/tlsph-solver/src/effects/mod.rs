@@ -31,6 +31,9 @@ pub(crate) struct EffectContext<'a, const D: usize> {
     pub bonds: &'a Bonds<D>,
     /// Current-configuration pairs (updated-Lagrangian formulation only).
     pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
+    /// Failed particles, ghosts included (empty unless a failure model is declared): they
+    /// are out of every sum, so an effect that walks reference bonds skips them.
+    pub removed: &'a [bool],
     /// This step's kick ½(Δt^n + Δt^{n+1}): velocities hold v^{n−½} + kick·a (internal forces).
     pub kick: f64,
     /// Time t^n of the configuration \[s\].
@@ -46,6 +49,12 @@ pub(crate) struct Configuration<'a, const D: usize> {
     pub bonds: &'a Bonds<D>,
     /// Current-configuration pairs (updated-Lagrangian formulation only).
     pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
+}
+
+/// Whether particle `i` takes part in the sums (it has not failed).
+#[inline]
+pub(crate) fn alive(removed: &[bool], i: usize) -> bool {
+    removed.get(i) != Some(&true)
 }
 
 /// An optional force contribution.
@@ -87,6 +96,12 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
     /// an effect that keeps per-bond reference data rebuilds it from the new `bonds` and the
     /// reference positions and volumes in `particles`.
     fn reference_changed(&mut self, _particles: &Particles<D>, _bonds: &Bonds<D>) {}
+
+    /// The symmetry ghosts were built or rebuilt (total-Lagrangian: at setup and at a
+    /// reference update; updated-Lagrangian: with every Verlet list): `body` gives the body of
+    /// every particle, ghosts (appended after the reals) included. An effect that keeps
+    /// per-particle data indexed by neighbours extends it to the ghosts.
+    fn ghosts_rebuilt(&mut self, _body: &[u32]) {}
 
     /// A boxed copy (simulations are `Clone`).
     fn clone_box(&self) -> Box<dyn Effect<D>>;

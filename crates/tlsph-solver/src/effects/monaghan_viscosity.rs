@@ -3,7 +3,7 @@
 //! updated-Lagrangian SPH over the current pairs. Repulsive on approach, pairwise antisymmetric
 //! (momentum conserving); its work is booked as dissipation.
 
-use super::{Effect, EffectContext};
+use super::{alive, Effect, EffectContext};
 use rayon::prelude::*;
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
@@ -16,7 +16,7 @@ pub struct MonaghanViscosity {
     beta: f64,
     /// Kernel of each body.
     kernels: Vec<AnyKernel>,
-    /// Body index of each real particle.
+    /// Body index of each particle (updated-Lagrangian symmetry ghosts included).
     body: Vec<u32>,
     /// Reference density and sound speed of each body.
     density0: Vec<f64>,
@@ -53,9 +53,14 @@ impl<const D: usize> Effect<D> for MonaghanViscosity {
         "artificial_viscosity"
     }
 
+    fn ghosts_rebuilt(&mut self, body: &[u32]) {
+        self.body.clear();
+        self.body.extend_from_slice(body);
+    }
+
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
         let p = ctx.particles;
-        let n_real = out.len();
+        let removed = ctx.removed;
         let this = &*self;
         let position = |j: usize| p.positions0[j] + p.displacements[j];
         match ctx.pairs {
@@ -67,15 +72,17 @@ impl<const D: usize> Effect<D> for MonaghanViscosity {
                     .zip(&pairs.gradient[r])
                     .map(|(&j, g)| (j as usize, *g))
             }),
-            // TLSPH: the reference neighbours of the same body, kernel at x^n.
+            // TLSPH: the reference neighbours of the same body (symmetry ghosts included,
+            // failed particles not), kernel at x^n.
             None => this.gather(ctx, out, |i| {
                 let kernel = &this.kernels[this.body[i] as usize];
                 let xi = position(i);
+                let live = alive(removed, i);
                 ctx.bonds
                     .neighbours_of(i)
                     .iter()
                     .map(|&j| j as usize)
-                    .filter(move |&j| j < n_real)
+                    .filter(move |&j| live && alive(removed, j))
                     .map(move |j| (j, kernel.gradient(&(xi - position(j)))))
             }),
         }
