@@ -302,22 +302,12 @@ pub fn run_scene_to_dir(
     progress: Progress<'_>,
 ) -> Result<RunRecord, RunError> {
     check_replaceable(dir)?;
-    let partial = sibling(dir, "partial");
+    let partial = prepare_partial(dir)?;
     let mut frames: Vec<(f64, PathBuf)> = Vec::new();
     let mut frame_error: Option<RunError> = None;
     let mut sink = |frame: &Frame| {
         if frame_error.is_some() {
             return;
-        }
-        if frames.is_empty() && partial.exists() {
-            // A stale folder from an interrupted run: start afresh.
-            if let Err(e) = fs::remove_dir_all(&partial) {
-                frame_error = Some(RunError::Io {
-                    path: partial.clone(),
-                    message: e.to_string(),
-                });
-                return;
-            }
         }
         let name = PathBuf::from("frames").join(format!("frame_{:05}.vtu", frames.len()));
         match write_vtu(&partial.join(&name), frame) {
@@ -330,7 +320,14 @@ pub fn run_scene_to_dir(
             }
         }
     };
-    let record = run_scene_with_frames(scene, &mut sink, progress).map_err(RunError::Setup)?;
+    let record = match run_scene_with_frames(scene, &mut sink, progress) {
+        Ok(record) => record,
+        Err(e) => {
+            // A rejected scene leaves nothing behind: the folder made above is empty.
+            let _ = fs::remove_dir_all(&partial);
+            return Err(RunError::Setup(e));
+        }
+    };
     if let Some(e) = frame_error {
         return Err(e);
     }
@@ -343,6 +340,22 @@ pub fn run_scene_to_dir(
     }
     write_run_folder(scene, &record, dir, !frames.is_empty())?;
     Ok(record)
+}
+
+/// Makes an empty `<dir>.partial/` before the run (a stale one from an interrupted run is
+/// removed), so an output location that cannot be written is reported before any time is spent
+/// computing, not after.
+fn prepare_partial(dir: &Path) -> Result<PathBuf, RunError> {
+    let partial = sibling(dir, "partial");
+    let io = |e: std::io::Error| RunError::Io {
+        path: partial.clone(),
+        message: format!("cannot create the run's working folder here: {e}"),
+    };
+    if partial.exists() {
+        fs::remove_dir_all(&partial).map_err(io)?;
+    }
+    fs::create_dir_all(&partial).map_err(io)?;
+    Ok(partial)
 }
 
 /// Refuses to replace a folder that is not a previous run (no `summary.toml`) and not empty.

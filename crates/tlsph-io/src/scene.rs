@@ -626,6 +626,19 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 format!("must be in (0, 1], got {epsilon}"),
             ));
         }
+        if let Some(b) = bodies
+            .iter()
+            .find(|b| materials[b.material].model.has_damage())
+        {
+            return Err(ctx.error(
+                &x.epsilon.span(),
+                "xsph",
+                format!(
+                    "cannot be combined with a damage or failure model yet (material `{}` of body `{}` has one; the XSPH averages would keep failed particles in)",
+                    materials[b.material].name, b.name
+                ),
+            ));
+        }
         effects.xsph = Some(epsilon);
     }
     let updated_lagrangian = formulation == Formulation::UpdatedLagrangian;
@@ -708,15 +721,6 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             Contact::Penalty(c) => effects.penalty_contact = Some(c),
         }
     }
-    if updated_lagrangian {
-        if let Some(plane) = file.symmetry_plane.first() {
-            return Err(ctx.error(
-                &plane.axis.span(),
-                "symmetry_plane",
-                "not available with formulation = \"updated-lagrangian\" (mirror particles are built from the reference configuration); model the full body".into(),
-            ));
-        }
-    }
     if let Some(h) = &file.hourglass_control {
         if updated_lagrangian {
             return Err(ctx.error(
@@ -780,6 +784,19 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 &span,
                 "reference_update",
                 "cannot be combined with [xsph] yet".into(),
+            ));
+        }
+        if let Some(b) = bodies
+            .iter()
+            .find(|b| materials[b.material].model.has_damage())
+        {
+            return Err(ctx.error(
+                &span,
+                "reference_update",
+                format!(
+                    "cannot be combined with a damage or failure model yet (material `{}` of body `{}` has one; failed particles are removed from the initial bonds)",
+                    materials[b.material].name, b.name
+                ),
             ));
         }
         let support = ctx.keyword(

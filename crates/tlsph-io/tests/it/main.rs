@@ -8,6 +8,7 @@ mod body_force;
 mod contact;
 mod cuts;
 mod damage;
+mod failure;
 mod kernel_groups;
 mod materials;
 mod wall_friction;
@@ -183,6 +184,24 @@ fn a_folder_that_is_not_a_run_is_never_overwritten() {
     assert_eq!(
         fs::read_to_string(dir.join("thesis.tex")).unwrap(),
         "keep me"
+    );
+}
+
+#[test]
+fn an_output_location_that_cannot_be_written_is_reported_before_the_run() {
+    // The run folder's parent is a file: nothing can be created there. The error must come
+    // before any step is computed (the progress callback never runs), not after the run.
+    let tmp = tempfile::tempdir().unwrap();
+    fs::write(tmp.path().join("a-file"), "not a folder").unwrap();
+    let dir = tmp.path().join("a-file").join("run");
+    let scene = parse_scene(PLATE_IMPACT, "scene.toml").unwrap();
+    let mut steps_seen = 0;
+    let err = run_scene_to_dir(&scene, &dir, &mut |_, _| steps_seen += 1).unwrap_err();
+    assert_eq!(steps_seen, 0, "the run went ahead: {err}");
+    let message = err.to_string();
+    assert!(
+        message.contains("run.partial") && message.contains("cannot create"),
+        "{message}"
     );
 }
 
