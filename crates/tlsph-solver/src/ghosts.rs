@@ -71,39 +71,30 @@ impl<const D: usize> Ghosts<D> {
 
     /// Mirrors displacements and velocities from the parents (gather per ghost).
     pub fn refresh_kinematics(&self, p: &mut Particles<D>) {
-        if self.parent.is_empty() {
-            return;
-        }
-        let (real_u, ghost_u) = p.displacements.split_at_mut(self.first);
-        let (real_v, ghost_v) = p.velocities.split_at_mut(self.first);
-        ghost_u
-            .par_iter_mut()
-            .zip(ghost_v.par_iter_mut())
-            .enumerate()
-            .for_each(|(g, (u, v))| {
-                let (parent, signs) = (self.parent[g], self.signs[g]);
-                *u = real_u[parent].component_mul(&signs);
-                *v = real_v[parent].component_mul(&signs);
-            });
+        self.mirror_two(&mut p.displacements, &mut p.velocities);
     }
 
-    /// Mirrors velocities and accelerations from the parents: an updated-Lagrangian effect
-    /// that reads a neighbour's velocity at t^n (v − ½ kick a) sees the ghost's as its
-    /// parent's.
+    /// Mirrors velocities and accelerations from the parents: an effect that reads a
+    /// neighbour's velocity at t^n (v − ½ kick a) sees the ghost's as its parent's.
     pub fn refresh_motion(&self, p: &mut Particles<D>) {
+        self.mirror_two(&mut p.velocities, &mut p.accelerations);
+    }
+
+    /// Mirrors two per-particle vector fields from the parents in one gather.
+    fn mirror_two(&self, a: &mut [Vector<D>], b: &mut [Vector<D>]) {
         if self.parent.is_empty() {
             return;
         }
-        let (real_v, ghost_v) = p.velocities.split_at_mut(self.first);
-        let (real_a, ghost_a) = p.accelerations.split_at_mut(self.first);
-        ghost_v
+        let (real_a, ghost_a) = a.split_at_mut(self.first);
+        let (real_b, ghost_b) = b.split_at_mut(self.first);
+        ghost_a
             .par_iter_mut()
-            .zip(ghost_a.par_iter_mut())
+            .zip(ghost_b.par_iter_mut())
             .enumerate()
-            .for_each(|(g, (v, a))| {
+            .for_each(|(g, (x, y))| {
                 let (parent, signs) = (self.parent[g], self.signs[g]);
-                *v = real_v[parent].component_mul(&signs);
-                *a = real_a[parent].component_mul(&signs);
+                *x = real_a[parent].component_mul(&signs);
+                *y = real_b[parent].component_mul(&signs);
             });
     }
 

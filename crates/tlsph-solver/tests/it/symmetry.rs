@@ -20,6 +20,16 @@ fn centred(nx: usize, ny: usize, dx: f64) -> Vec<Vector<2>> {
     out
 }
 
+/// The planes x = 0 and y = 0 of a quarter model.
+fn quarter_planes() -> Vec<SymmetryPlane> {
+    [0, 1]
+        .map(|axis| SymmetryPlane {
+            axis,
+            position: 0.0,
+        })
+        .to_vec()
+}
+
 /// Mirror-symmetric velocity field: v_x odd in x and even in y, v_y the reverse.
 fn symmetric_velocity(x: &Vector<2>) -> Vector<2> {
     Vector::<2>::new(
@@ -111,16 +121,7 @@ fn a_quarter_model_with_two_planes_moves_like_the_full_model() {
         quarter.effects.reference_update = full.effects.reference_update;
         quarter.effects.pairwise_viscosity = full.effects.pairwise_viscosity;
         quarter.effects.hourglass_control = full.effects.hourglass_control;
-        quarter.effects.symmetry_planes = vec![
-            SymmetryPlane {
-                axis: 0,
-                position: 0.0,
-            },
-            SymmetryPlane {
-                axis: 1,
-                position: 0.0,
-            },
-        ];
+        quarter.effects.symmetry_planes = quarter_planes();
         let mut a = Simulation::new(full).unwrap();
         let mut b = Simulation::new(quarter).unwrap();
         assert_eq!(
@@ -232,16 +233,7 @@ fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
         quarter.materials[0].model = material;
         quarter.effects.pairwise_viscosity = full.effects.pairwise_viscosity;
         quarter.effects.hourglass_control = full.effects.hourglass_control;
-        quarter.effects.symmetry_planes = vec![
-            SymmetryPlane {
-                axis: 0,
-                position: 0.0,
-            },
-            SymmetryPlane {
-                axis: 1,
-                position: 0.0,
-            },
-        ];
+        quarter.effects.symmetry_planes = quarter_planes();
         let mut a = Simulation::new(full).unwrap();
         let mut b = Simulation::new(quarter).unwrap();
         // A failed particle leaves every sum: from the step it fails on, it flies on with
