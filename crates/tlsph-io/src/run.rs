@@ -384,6 +384,30 @@ fn check_replaceable(dir: &Path) -> Result<(), RunError> {
     }
 }
 
+/// Writes a force history (`time`, then `<name>_force_x/y/z` for each named force) to `path`;
+/// nothing when the run has no such forces.
+fn write_forces(
+    path: &Path,
+    diagnostics: &[Diagnostics],
+    forces: impl Fn(&Diagnostics) -> &Vec<(String, tlsph_math::Vector3)>,
+) -> Result<(), RunError> {
+    let Some(first) = diagnostics.first().filter(|d| !forces(d).is_empty()) else {
+        return Ok(());
+    };
+    let mut header = vec!["time".to_string()];
+    for (n, _) in forces(first) {
+        header.extend(["x", "y", "z"].map(|c| format!("{n}_force_{c}")));
+    }
+    let rows = diagnostics.iter().map(|d| {
+        let mut row = vec![d.time];
+        for (_, f) in forces(d) {
+            row.extend([f.x, f.y, f.z]);
+        }
+        row
+    });
+    write_csv(path, &header, rows)
+}
+
 fn write_run_folder(
     scene: &Scene,
     record: &RunRecord,
@@ -431,25 +455,12 @@ fn write_run_folder(
         row
     });
     write_csv(&partial.join("energy.csv"), &energy_header, energy_rows)?;
-    let force_names: Vec<String> = record
-        .diagnostics
-        .first()
-        .map(|d| d.effect_forces.iter().map(|(n, _)| n.clone()).collect())
-        .unwrap_or_default();
-    if !force_names.is_empty() {
-        let mut header = vec!["time".to_string()];
-        for n in &force_names {
-            header.extend(["x", "y", "z"].map(|c| format!("{n}_force_{c}")));
-        }
-        let rows = record.diagnostics.iter().map(|d| {
-            let mut row = vec![d.time];
-            for (_, f) in &d.effect_forces {
-                row.extend([f.x, f.y, f.z]);
-            }
-            row
-        });
-        write_csv(&partial.join("walls.csv"), &header, rows)?;
-    }
+    write_forces(&partial.join("walls.csv"), &record.diagnostics, |d| {
+        &d.effect_forces
+    })?;
+    write_forces(&partial.join("boundaries.csv"), &record.diagnostics, |d| {
+        &d.boundary_forces
+    })?;
     let momentum_rows = record.diagnostics.iter().map(|d| {
         let (p, l) = (d.linear_momentum, d.angular_momentum);
         vec![d.time, p.x, p.y, p.z, l.x, l.y, l.z]

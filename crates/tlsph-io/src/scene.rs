@@ -503,6 +503,17 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 format!("boundary `{}` is defined twice", t.name.get_ref()),
             ));
         }
+        // The name heads CSV columns (`boundary_<name>`): no separators or quotes in it.
+        if !is_safe_file_stem(t.name.get_ref()) {
+            return Err(ctx.error(
+                &t.name.span(),
+                "boundary.name",
+                format!(
+                    "`{}` names columns of energy.csv and boundaries.csv: use letters, digits, `-`, `_` and `.` (not first)",
+                    t.name.get_ref()
+                ),
+            ));
+        }
         let body = find_body(&t.body, &format!("boundary[{}].body", t.name.get_ref()))?;
         boundaries.push(build_boundary::<D>(ctx, t, body, &bodies[body])?);
     }

@@ -17,11 +17,17 @@ pub struct Diagnostics {
     /// Σ m x × v about the origin [kg m²/s], padded to 3D.
     pub angular_momentum: Vector3,
     /// Energy booked for each declared effect (name, −∫ Σ f·v dt \[J\]): what the mechanism
-    /// has taken out of the particles, stored (wall penalty) or dissipated (hourglass control).
+    /// has taken out of the particles, stored (wall penalty) or dissipated (hourglass control);
+    /// then one `boundary_<name>` per prescribed-velocity set (minus the work it has done on
+    /// its particles), and `deleted_particles` with a failure model.
     pub effect_energies: Vec<(String, f64)>,
     /// Resultant force of each effect that reports one (walls: the reaction on the particles)
     /// \[N\], padded to 3D.
     pub effect_forces: Vec<(String, Vector3)>,
+    /// Force of each prescribed-velocity set (`boundary_<name>`) on its particles in the
+    /// last step \[N\], padded to 3D: the reaction a grip or clamp exerts, every force on the
+    /// held components included (numerics.md §13.2, see `prescribed.rs`).
+    pub boundary_forces: Vec<(String, Vector3)>,
     /// Particles failed so far (out of every sum; their mass and momentum still count).
     pub failed_particles: usize,
 }

@@ -20,6 +20,7 @@ mod ghosts;
 mod model;
 mod particles;
 mod plasticity;
+mod prescribed;
 mod reference;
 mod simulation;
 pub mod stability;

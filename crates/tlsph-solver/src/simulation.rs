@@ -11,11 +11,10 @@ use crate::effects::{
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::ghosts::{check_plane_sides, reflect, reflection_signs, Ghosts};
-use crate::model::{
-    Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, VelocityRamp,
-};
+use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
+use crate::prescribed::{Drivers, PrescribedSet};
 use crate::reference::ReferenceState;
 use crate::stability::NeighbourDistances;
 use crate::step::{
@@ -94,15 +93,6 @@ pub struct StepReport {
     pub limiting_particle: usize,
 }
 
-/// Prescribed-velocity set in global indices.
-#[derive(Debug, Clone)]
-struct PrescribedSet<const D: usize> {
-    particles: Vec<usize>,
-    velocity: Vector<D>,
-    components: [bool; D],
-    ramp: Option<VelocityRamp>,
-}
-
 /// A running TLSPH simulation in `D` dimensions.
 ///
 /// After [`Simulation::step`] returns, every quantity describes the same instant t^n:
@@ -115,7 +105,8 @@ pub struct Simulation<const D: usize> {
     bodies: Vec<BodyInfo>,
     particles: Particles<D>,
     bonds: Bonds<D>,
-    prescribed: Vec<PrescribedSet<D>>,
+    /// Prescribed velocities with their forces and work (empty without `[[boundary]]`).
+    drivers: Drivers<D>,
     /// Symmetry ghosts (empty without symmetry planes).
     ghosts: Ghosts<D>,
     /// The declared symmetry planes (to rebuild the ghosts at a reference update).
@@ -270,6 +261,7 @@ impl<const D: usize> Simulation<D> {
                         })?;
                 }
                 Ok(PrescribedSet {
+                    name: b.name.clone(),
                     particles: b.particles.iter().map(|i| info.range.start + i).collect(),
                     velocity: b.velocity,
                     components: b.components,
@@ -277,6 +269,7 @@ impl<const D: usize> Simulation<D> {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let drivers = Drivers::new(prescribed, n_real);
         if config.stress_update == StressUpdate::GreenLagrange {
             if let Some(m) = model
                 .bodies
@@ -401,13 +394,7 @@ impl<const D: usize> Simulation<D> {
             }
         };
         let effects = build_effects(
-            &model,
-            &bodies,
-            &kernels,
-            &particles,
-            &bonds,
-            &prescribed,
-            n_real,
+            &model, &bodies, &kernels, &particles, &bonds, &drivers, n_real,
         )?;
         let updated = updated_lagrangian.then(|| {
             let body = body_indices(&bodies, n_real);
@@ -446,7 +433,7 @@ impl<const D: usize> Simulation<D> {
             bodies,
             particles,
             bonds,
-            prescribed,
+            drivers,
             plastic,
             damage,
             correction,
@@ -588,20 +575,27 @@ impl<const D: usize> Simulation<D> {
             }
             None => gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick),
         }
-        self.apply_effects(kick);
-        // Prescribed components: zero their acceleration; their kicked velocity is overwritten
-        // by `impose_velocities`, so kicking before zeroing changes nothing.
-        zero_prescribed(&self.prescribed, &mut self.particles.accelerations);
+        self.apply_effects(
+            kick,
+            if kick > 0.0 {
+                0.5 * next_dt / kick
+            } else {
+                0.0
+            },
+        );
         // The kicked velocity is v^{n+½} of the coming drift, centred at t^n + ½Δt^{n+1}.
+        // Held components take their prescribed value there (the kick they got is the
+        // driver's impulse, booked as its force and work).
         let velocity_time = self.time + 0.5 * next_dt;
-        self.impose_velocities(velocity_time);
+        self.drivers
+            .drive(&mut self.particles, dt, next_dt, velocity_time);
         if let Some(xsph) = &mut self.xsph {
             xsph.update(
                 &self.bonds,
                 &self.particles.velocities,
                 self.ghosts.first_or(self.particles.len()),
             );
-            impose_on(&self.prescribed, &mut xsph.velocity, velocity_time);
+            self.drivers.impose_current(&mut xsph.velocity);
             self.ghosts.mirror(&mut xsph.velocity);
         }
         if let Some(updated) = &mut self.updated {
@@ -609,7 +603,7 @@ impl<const D: usize> Simulation<D> {
             self.ghosts.refresh_motion(&mut self.particles);
             updated.update_xsph(&self.particles);
             if let Some((_, transport)) = &mut updated.xsph {
-                impose_on(&self.prescribed, transport, velocity_time);
+                self.drivers.impose_current(transport);
             }
         }
         self.next_dt = next_dt;
@@ -1022,8 +1016,11 @@ impl<const D: usize> Simulation<D> {
     /// v^n = v^{n+½} − ½Δt* a the midpoint of the whole kick: booked one effect at a time, the
     /// later effects' share of the kick would be missing from v^n, an error m a_k·a_j Δt*²/2 per
     /// step that adds up to first order in Δt wherever two effects act on the same particles
-    /// (a contact face and its hourglass control).
-    fn apply_effects(&mut self, kick: f64) {
+    /// (a contact face and its hourglass control). `forward` = ½Δt^{n+1}/Δt* is the share of
+    /// this kick that lies after t^n: it is held back from the energy reported at t^n, which
+    /// makes the booked work the trapezoidal rule that the kinetic and internal energies at
+    /// t^n follow (booked whole, every column led the instant by ½Δt f·v, an O(Δt) error).
+    fn apply_effects(&mut self, kick: f64, forward: f64) {
         for (booked, share) in self.effects.iter_mut().zip(&mut self.effect_shares) {
             share.fill(Vector::zeros());
             // Effects read their neighbours' motion, symmetry ghosts included: mirror the
@@ -1039,10 +1036,10 @@ impl<const D: usize> Simulation<D> {
             };
             booked.effect.accelerations(&ctx, share);
             // A prescribed component moves as imposed whatever acts on it: the effect's force
-            // there is taken by the driver, does no work on the particles and is no part of
-            // the resultant (a fixed body pressed by a contact would otherwise book the
-            // m|a|²Δt² its discarded kick implies, every step).
-            zero_prescribed(&self.prescribed, share);
+            // there is taken by the driver (and counted in its reaction), does no work on the
+            // particles and is no part of the resultant (a fixed body pressed by a contact
+            // would otherwise book the m|a|²Δt² its discarded kick implies, every step).
+            self.drivers.absorb(share, &self.particles.masses);
             let p = &mut self.particles;
             let masses = &p.masses;
             p.accelerations
@@ -1069,6 +1066,7 @@ impl<const D: usize> Simulation<D> {
         for (booked, share) in self.effects.iter_mut().zip(&self.effect_shares) {
             if let Some(stored) = booked.effect.stored_energy() {
                 booked.energy = stored;
+                booked.pending = 0.0;
                 continue;
             }
             let p = &self.particles;
@@ -1089,12 +1087,15 @@ impl<const D: usize> Simulation<D> {
                 .collect_into_vec(&mut self.chunk_sums);
             let work: f64 = self.chunk_sums.iter().map(|(w, _)| w).sum();
             booked.energy -= work;
+            // The kick spans t^n − ½Δt^n … t^n + ½Δt^{n+1}: the energy at t^n leaves out the
+            // later part (trapezoidal rule, as the kinetic energy at t^n sees it).
+            booked.pending = -work * forward;
         }
     }
 
     /// Imposes the prescribed velocities as they are at time `at`.
     fn impose_velocities(&mut self, at: f64) {
-        impose_on(&self.prescribed, &mut self.particles.velocities, at);
+        self.drivers.impose(&mut self.particles.velocities, at);
     }
 
     fn check_finite(&self, step: u64) -> Result<(), StepError> {
@@ -1388,7 +1389,15 @@ impl<const D: usize> Simulation<D> {
             if let Some(f) = booked.effect.resultant() {
                 d.effect_forces.push((name.clone(), vector_to_3d(&f)));
             }
-            d.effect_energies.push((name, booked.energy));
+            d.effect_energies
+                .push((name, booked.energy - booked.pending));
+        }
+        // Each `[[boundary]]` set: its energy column is minus the work it has done on the
+        // particles (what it took out), so the total closes for driven scenes too.
+        for (name, force, work) in self.drivers.reports() {
+            d.effect_energies.push((format!("boundary_{name}"), -work));
+            d.boundary_forces
+                .push((format!("boundary_{name}"), vector_to_3d(&force)));
         }
         if !self.removed.is_empty() {
             // The internal energy failed particles carried when they left the sums (strain
@@ -1702,61 +1711,6 @@ fn mirror_body<const D: usize>(
     })
 }
 
-/// Sets the prescribed components of `velocities` to their values at time `at` (numerics.md
-/// §13.2, scaled by the set's [`VelocityRamp`] if it has one). Applied to the particle
-/// velocities and to the XSPH transport velocities, so a fixed particle never drifts with the
-/// average of its moving neighbours.
-fn impose_on<const D: usize>(
-    prescribed: &[PrescribedSet<D>],
-    velocities: &mut [Vector<D>],
-    at: f64,
-) {
-    for set in prescribed {
-        let velocity = match set.ramp {
-            None => set.velocity,
-            Some(ramp) => set.velocity * ramp.factor(at),
-        };
-        for &i in &set.particles {
-            for (c, imposed) in set.components.iter().enumerate() {
-                if *imposed {
-                    velocities[i][c] = velocity[c];
-                }
-            }
-        }
-    }
-}
-
-/// Per real particle, which velocity components some prescribed set holds (a particle may be
-/// in several sets: their components are merged).
-fn prescribed_components<const D: usize>(
-    prescribed: &[PrescribedSet<D>],
-    n_real: usize,
-) -> Vec<[bool; D]> {
-    let mut held = vec![[false; D]; n_real];
-    for set in prescribed {
-        for &i in &set.particles {
-            for (h, &c) in held[i].iter_mut().zip(&set.components) {
-                *h |= c;
-            }
-        }
-    }
-    held
-}
-
-/// Zeroes the prescribed components of a per-particle field (accelerations, or an effect's
-/// share of them).
-fn zero_prescribed<const D: usize>(prescribed: &[PrescribedSet<D>], field: &mut [Vector<D>]) {
-    for set in prescribed {
-        for &i in &set.particles {
-            for (c, imposed) in set.components.iter().enumerate() {
-                if *imposed {
-                    field[i][c] = 0.0;
-                }
-            }
-        }
-    }
-}
-
 /// Chunk length of deterministic parallel reductions and searches.
 const CHUNK: usize = 4096;
 
@@ -1786,7 +1740,7 @@ fn build_effects<const D: usize>(
     kernels: &[tlsph_kernels::AnyKernel],
     particles: &Particles<D>,
     bonds: &Bonds<D>,
-    prescribed: &[PrescribedSet<D>],
+    drivers: &Drivers<D>,
     n_real: usize,
 ) -> Result<Vec<BookedEffect<D>>, SetupError> {
     let mut effects: Vec<BookedEffect<D>> = Vec::new();
@@ -1801,10 +1755,11 @@ fn build_effects<const D: usize>(
                 model,
                 body_force,
                 bodies,
-                prescribed,
+                drivers,
                 &particles.positions0[..n],
             )?),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     for wall in &model.effects.walls {
@@ -1841,11 +1796,13 @@ fn build_effects<const D: usize>(
         effects.push(BookedEffect {
             effect: Box::new(rigid),
             energy: 0.0,
+            pending: 0.0,
         });
         if let Some(friction) = friction {
             effects.push(BookedEffect {
                 effect: Box::new(friction),
                 energy: 0.0,
+                pending: 0.0,
             });
         }
     }
@@ -1866,6 +1823,7 @@ fn build_effects<const D: usize>(
                 bodies.iter().map(|b| b.sound_speed0).collect(),
             )),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     if let Some(a) = &model.effects.artificial_stress {
@@ -1914,6 +1872,7 @@ fn build_effects<const D: usize>(
                     .collect(),
             )),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     if let Some(contact) = &model.effects.penalty_contact {
@@ -1925,9 +1884,10 @@ fn build_effects<const D: usize>(
         }
         effects.push(BookedEffect {
             effect: Box::new(build_penalty_contact(
-                model, contact, bodies, kernels, prescribed,
+                model, contact, bodies, kernels, drivers,
             )?),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     if let Some(contact) = &model.effects.contact {
@@ -1939,6 +1899,7 @@ fn build_effects<const D: usize>(
                 &particles.positions0[..n],
             )?),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     if let Some(alpha) = model.effects.hourglass_control {
@@ -1963,6 +1924,7 @@ fn build_effects<const D: usize>(
         effects.push(BookedEffect {
             effect: Box::new(hourglass),
             energy: 0.0,
+            pending: 0.0,
         });
     }
     Ok(effects)
@@ -1975,7 +1937,7 @@ fn build_body_force<const D: usize>(
     model: &Model<D>,
     body_force: &crate::model::BodyForceDescription<D>,
     bodies: &[BodyInfo],
-    prescribed: &[PrescribedSet<D>],
+    drivers: &Drivers<D>,
     positions0: &[Vector<D>],
 ) -> Result<BodyForce<D>, SetupError> {
     let b = body_force.acceleration;
@@ -2021,10 +1983,7 @@ fn build_body_force<const D: usize>(
                 message,
             })?;
     }
-    let held = prescribed_components(prescribed, positions0.len())
-        .into_iter()
-        .enumerate()
-        .filter(|(_, mask)| mask.iter().any(|&c| c));
+    let held = drivers.held_components();
     Ok(BodyForce::new(
         b,
         ranges,
@@ -2149,7 +2108,7 @@ fn build_penalty_contact<const D: usize>(
     contact: &crate::model::PenaltyContactDescription,
     bodies: &[BodyInfo],
     kernels: &[tlsph_kernels::AnyKernel],
-    prescribed: &[PrescribedSet<D>],
+    drivers: &Drivers<D>,
 ) -> Result<PenaltyContact<D>, SetupError> {
     let fail =
         |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
@@ -2197,10 +2156,13 @@ fn build_penalty_contact<const D: usize>(
         laws[b * nb + a] = Some(law);
     }
     let n_real = bodies.last().map_or(0, |b| b.range.end);
-    let held = prescribed_components(prescribed, n_real);
+    let mut fully_held = vec![false; n_real];
+    for (i, held) in drivers.held_components() {
+        fully_held[i] = held.iter().all(|&c| c);
+    }
     let driven = bodies
         .iter()
-        .map(|b| held[b.range.clone()].iter().all(|h| h.iter().all(|&c| c)))
+        .map(|b| fully_held[b.range.clone()].iter().all(|&h| h))
         .collect();
     Ok(PenaltyContact::new(
         laws,
@@ -2438,7 +2400,7 @@ mod penalty_contact_tests {
             &description,
             &sim.bodies,
             &sim.kernels,
-            &sim.prescribed,
+            &sim.drivers,
         )
         .unwrap();
         let at = Configuration {

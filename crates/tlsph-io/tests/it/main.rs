@@ -5,6 +5,7 @@ use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
 use tlsph_solver::ReferenceSupport;
 
 mod body_force;
+mod boundaries;
 mod contact;
 mod cuts;
 mod damage;

@@ -1,7 +1,7 @@
 //! Uniform body force per unit mass b (gravity; numerics.md §4.5, R 4.11: ρ0 ü = ∇·P + ρ0 b).
-//! Every real particle of the selected bodies gets the acceleration b, except the velocity
-//! components a boundary prescribes: the drive holds those, so the body force does no work on
-//! them. The force is conservative, so its energy column is the potential energy gained,
+//! Every real particle of the selected bodies gets the acceleration b. On the velocity
+//! components a boundary prescribes, the drive takes that force over (it becomes part of the
+//! boundary's reaction, `prescribed.rs`), so the body force does no work there. The force is conservative, so its energy column is the potential energy gained,
 //! −Σ m b·(x − x_start) over the free components, evaluated at the same instant as the
 //! kinetic energy (for a free fall leap-frog then closes the total to round-off, where a work
 //! integral of the staggered velocities would leave an O(Δt) boundary term).
@@ -52,9 +52,10 @@ struct RampState {
 }
 
 impl<const D: usize> BodyForce<D> {
-    /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged), minus
-    /// the prescribed components `held` (ascending particle index, each particle once with its
-    /// merged mask); `start` holds the initial positions of the real particles.
+    /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged); the
+    /// prescribed components `held` (ascending particle index, each particle once with its
+    /// merged mask) are left out of the potential energy; `start` holds the initial positions
+    /// of the real particles.
     pub(crate) fn new(
         acceleration: Vector<D>,
         mut ranges: Vec<Range<usize>>,
@@ -117,13 +118,13 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
                         .sum::<f64>()
                 }));
         }
-        // Π = Σ m b·(x − x_start) over the free components, with the full b.
+        // Π = Σ m b·(x − x_start) over the free components, with the full b (the held
+        // components' share of `out` is taken over by their driver after this call).
         let mut work: f64 = self.chunk_sums.iter().sum();
         for &(i, components) in &self.held {
             let moved = (p.positions0[i] - start[i]) + p.displacements[i];
             for (c, held) in components.iter().enumerate() {
                 if *held {
-                    out[i][c] = 0.0;
                     work -= p.masses[i] * b[c] * moved[c];
                 }
             }

@@ -112,7 +112,11 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
 #[derive(Debug)]
 pub(crate) struct BookedEffect<const D: usize> {
     pub effect: Box<dyn Effect<D>>,
+    /// Energy booked over all the kicks so far \[J\].
     pub energy: f64,
+    /// The part of `energy` booked for the time after t^n (the forward half of the last
+    /// kick), left out of the energy reported at t^n.
+    pub pending: f64,
 }
 
 impl<const D: usize> Clone for BookedEffect<D> {
@@ -120,6 +124,7 @@ impl<const D: usize> Clone for BookedEffect<D> {
         Self {
             effect: self.effect.clone_box(),
             energy: self.energy,
+            pending: self.pending,
         }
     }
 }

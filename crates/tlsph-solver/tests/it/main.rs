@@ -9,6 +9,7 @@ mod effects;
 mod long_runs;
 mod penalty_contact;
 mod plasticity;
+mod prescribed;
 mod reference_update;
 mod symmetry;
 mod updated_lagrangian;
