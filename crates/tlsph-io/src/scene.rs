@@ -203,6 +203,27 @@ impl Context<'_> {
         }
     }
 
+    /// Checks that `name` is a plain name (letters, digits, `-`, `_`, `.`, not first), as a
+    /// file name or CSV column needs; the error says what the name `is_for`.
+    fn plain_name(
+        &self,
+        name: &Spanned<String>,
+        field: &str,
+        is_for: &str,
+    ) -> Result<(), SceneError> {
+        if is_safe_file_stem(name.get_ref()) {
+            return Ok(());
+        }
+        Err(self.error(
+            &name.span(),
+            field,
+            format!(
+                "`{}` {is_for}: use letters, digits, `-`, `_` and `.` (not first)",
+                name.get_ref()
+            ),
+        ))
+    }
+
     fn scene(&self, model: DimensionModel, probes: Vec<ProbeSpec>, output: OutputSpec) -> Scene {
         Scene {
             origin: self.origin.to_string(),
@@ -453,6 +474,19 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
         bodies.push(body);
     }
+    if let Some((later, earlier, at, distance)) = first_overlap(&bodies) {
+        let fmt_at: Vec<String> = at.iter().map(|x| format!("{x}")).collect();
+        return Err(ctx.error(
+            &file.body[later].name.span(),
+            &format!("body[{}]", bodies[later].name),
+            format!(
+                "starts inside body `{}`: its particle at [{}] is {distance:.3e} from one of `{}`'s, less than half the smaller spacing; bodies must not overlap (leave at least one spacing between their outer particle rows)",
+                bodies[earlier].name,
+                fmt_at.join(", "),
+                bodies[earlier].name
+            ),
+        ));
+    }
     if bodies.is_empty() {
         return Err(SceneError {
             file: ctx.origin.to_string(),
@@ -504,16 +538,11 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             ));
         }
         // The name heads CSV columns (`boundary_<name>`): no separators or quotes in it.
-        if !is_safe_file_stem(t.name.get_ref()) {
-            return Err(ctx.error(
-                &t.name.span(),
-                "boundary.name",
-                format!(
-                    "`{}` names columns of energy.csv and boundaries.csv: use letters, digits, `-`, `_` and `.` (not first)",
-                    t.name.get_ref()
-                ),
-            ));
-        }
+        ctx.plain_name(
+            &t.name,
+            "boundary.name",
+            "names columns of energy.csv and boundaries.csv",
+        )?;
         let body = find_body(&t.body, &format!("boundary[{}].body", t.name.get_ref()))?;
         boundaries.push(build_boundary::<D>(ctx, t, body, &bodies[body])?);
     }
@@ -521,16 +550,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
     let mut probes = Vec::with_capacity(file.probe.len());
     for t in &file.probe {
         let body = find_body(&t.body, &format!("probe[{}].body", t.name.get_ref()))?;
-        if !is_safe_file_stem(t.name.get_ref()) {
-            return Err(ctx.error(
-                &t.name.span(),
-                "probe.name",
-                format!(
-                    "`{}` cannot be a file name: use letters, digits, `-`, `_` and `.` (not first)",
-                    t.name.get_ref()
-                ),
-            ));
-        }
+        ctx.plain_name(&t.name, "probe.name", "cannot be a file name")?;
         if probes
             .iter()
             .any(|p: &ProbeSpec| &p.name == t.name.get_ref())
@@ -562,6 +582,27 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 &format!("wall[{name}].normal"),
                 "must not be zero".into(),
             ));
+        }
+        let unit = normal / normal.norm();
+        for body in &bodies {
+            let behind = body
+                .positions
+                .iter()
+                .map(|x| (x, (x - point).dot(&unit)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
+                let fmt_at: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
+                return Err(ctx.error(
+                    &w.point.span(),
+                    &format!("wall[{name}].point"),
+                    format!(
+                        "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the plane (particles must start on the side the normal points to)",
+                        body.name,
+                        fmt_at.join(", "),
+                        -d
+                    ),
+                ));
+            }
         }
         let friction = match &w.friction {
             Some(mu) => ctx.non_negative(mu, &format!("wall[{name}].friction"))?,
@@ -1989,6 +2030,44 @@ fn build_probe<const D: usize>(
 
 /// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
 /// Index of a coordinate axis named "x", "y" or "z".
+/// The first pair of bodies that start inside each other: (later body, earlier body, the
+/// later body's particle, distance) for the first particle (in body then particle order)
+/// closer to a particle of an earlier body than half the smaller of the two spacings. One cell
+/// search over all particles, O(N).
+fn first_overlap<const D: usize>(
+    bodies: &[BodyDescription<D>],
+) -> Option<(usize, usize, Vector<D>, f64)> {
+    if bodies.len() < 2 {
+        return None;
+    }
+    let points: Vec<Vector<D>> = bodies.iter().flat_map(|b| b.positions.clone()).collect();
+    let mut owner = Vec::with_capacity(points.len());
+    for (k, b) in bodies.iter().enumerate() {
+        owner.extend(std::iter::repeat_n(k, b.positions.len()));
+    }
+    let largest = bodies.iter().map(|b| b.spacing).fold(0.0, f64::max);
+    // Coordinates and spacings are checked finite by now; a failure to bin means nothing to
+    // report here (the solver names the bad value).
+    let grid = tlsph_neighbours::CellGrid::new(&points, 0.5 * largest).ok()?;
+    for (i, x) in points.iter().enumerate() {
+        let mut found: Option<(usize, f64)> = None;
+        grid.for_each_candidate_with_position(x, |j, y| {
+            let a = owner[j as usize];
+            if a < owner[i] {
+                let d = (x - y).norm();
+                let limit = 0.5 * bodies[a].spacing.min(bodies[owner[i]].spacing);
+                if d < limit && found.is_none_or(|(b, _)| a < b) {
+                    found = Some((a, d));
+                }
+            }
+        });
+        if let Some((a, d)) = found {
+            return Some((owner[i], a, *x, d));
+        }
+    }
+    None
+}
+
 fn axis_index(name: &str) -> Option<usize> {
     ["x", "y", "z"].iter().position(|a| *a == name)
 }

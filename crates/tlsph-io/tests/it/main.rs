@@ -12,6 +12,7 @@ mod damage;
 mod failure;
 mod kernel_groups;
 mod materials;
+mod placement;
 mod wall_friction;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).
