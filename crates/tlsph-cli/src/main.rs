@@ -111,11 +111,33 @@ fn run(path: PathBuf, output: Option<PathBuf>, quiet: bool) -> ExitCode {
     }
 }
 
+/// Seconds still to go for a run that took `elapsed` seconds to reach the fraction `fraction`
+/// of its end time, at its average pace so far; `None` before any progress.
+fn time_to_go(elapsed: f64, fraction: f64) -> Option<u64> {
+    (fraction > 0.0 && elapsed.is_finite())
+        .then(|| (elapsed * (1.0 - fraction) / fraction).round() as u64)
+}
+
+/// `h:mm:ss`, or `m:ss` under an hour.
+fn format_duration(seconds: u64) -> String {
+    let (h, m, s) = (seconds / 3600, seconds / 60 % 60, seconds % 60);
+    if h > 0 {
+        format!("{h}:{m:02}:{s:02}")
+    } else {
+        format!("{m}:{s:02}")
+    }
+}
+
 /// A progress bar that appears only on a terminal and only once a run has taken a second.
+/// Its time to go is the run's own average: elapsed × (1 − f)/f at the fraction f of the end
+/// time reached (a bar that starts at f > 0 would give a rate estimator a jump in zero time
+/// and show an ETA near zero at first).
 struct LazyProgress {
     enabled: bool,
     start: Instant,
     bar: Option<ProgressBar>,
+    /// Last time to go shown \[s\] (the message is rewritten only when it changes).
+    shown_eta: Option<u64>,
 }
 
 /// Resolution of the bar: per-mille of the end time.
@@ -127,6 +149,7 @@ impl LazyProgress {
             enabled: !quiet && std::io::stderr().is_terminal(),
             start: Instant::now(),
             bar: None,
+            shown_eta: None,
         }
     }
 
@@ -135,17 +158,25 @@ impl LazyProgress {
             return;
         }
         if self.bar.is_none() && self.start.elapsed() > Duration::from_secs(1) {
-            let bar = ProgressBar::with_draw_target(Some(BAR_STEPS), ProgressDrawTarget::stderr());
+            let bar = ProgressBar::with_draw_target(Some(BAR_STEPS), ProgressDrawTarget::stderr())
+                .with_elapsed(self.start.elapsed())
+                .with_message("?");
             bar.set_style(
                 ProgressStyle::with_template(
-                    "{spinner} [{elapsed_precise}] {wide_bar} {percent}% (eta {eta})",
+                    "{spinner} [{elapsed_precise}] {wide_bar} {percent}% (eta {msg})",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
             self.bar = Some(bar);
         }
         if let Some(bar) = &self.bar {
-            bar.set_position(((t / end).clamp(0.0, 1.0) * BAR_STEPS as f64) as u64);
+            let fraction = (t / end).clamp(0.0, 1.0);
+            bar.set_position((fraction * BAR_STEPS as f64) as u64);
+            let eta = time_to_go(self.start.elapsed().as_secs_f64(), fraction);
+            if eta != self.shown_eta {
+                self.shown_eta = eta;
+                bar.set_message(eta.map_or_else(|| "?".to_string(), format_duration));
+            }
         }
     }
 
@@ -153,5 +184,20 @@ impl LazyProgress {
         if let Some(bar) = self.bar.take() {
             bar.finish_and_clear();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{format_duration, time_to_go};
+
+    #[test]
+    fn the_time_to_go_is_the_average_pace_so_far() {
+        // 2 s for the first 5 %: 38 s for the other 95 %.
+        assert_eq!(time_to_go(2.0, 0.05), Some(38));
+        assert_eq!(time_to_go(10.0, 1.0), Some(0));
+        assert_eq!(time_to_go(1.0, 0.0), None);
+        assert_eq!(format_duration(38), "0:38");
+        assert_eq!(format_duration(3 * 3600 + 5 * 60 + 7), "3:05:07");
     }
 }
