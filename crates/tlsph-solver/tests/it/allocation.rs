@@ -1,8 +1,8 @@
 //! A step allocates nothing after warm-up: all per-step scratch lives in the simulation.
 //!
 //! A counting global allocator counts only on threads that opted in (this test's thread and the
-//! workers of its own rayon pool), so tests running concurrently in this binary do not disturb
-//! the count; the measuring tests take one lock, so two of them never count at the same time
+//! workers of its own rayon pool, until they exit), so tests running concurrently in this
+//! binary do not disturb the count; the measuring tests take one lock, so two of them never count at the same time
 //! into the shared counter.
 
 use super::{lattice, model, Setup};
@@ -63,6 +63,10 @@ fn allocations_during_steps<const D: usize>(model: Model<D>, steps: usize) -> us
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .start_handler(|_| COUNTED.with(|c| c.set(true)))
+        // A worker's thread-local destructors (crossbeam's epoch handle) allocate when it
+        // exits, which happens after this pool is dropped, possibly while a later test counts:
+        // a worker stops counting before it exits.
+        .exit_handler(|_| COUNTED.with(|c| c.set(false)))
         .build()
         .unwrap();
     let mut sim = Simulation::new(model).unwrap();
