@@ -25,7 +25,7 @@ fn bench_contact(c: &mut Criterion) {
     let dx = 1e-3;
     let (points, body) = blocks(30, dx);
     let displacements = vec![Vector::<3>::zeros(); points.len()];
-    let cross = |_: usize, a: u32, _: usize, b: u32| a != b;
+    let cross = |_: usize, a: u32, _: usize, b: u32, _: u32| a != b;
     let law = PotentialLaw::new(
         KernelKind::CubicSpline.build(3, 1.2 * dx).unwrap(),
         dx,

@@ -5,7 +5,7 @@
 //! contact law shares. Knows nothing about the force law.
 
 use rayon::prelude::*;
-use tlsph_math::Vector;
+use tlsph_math::{PlaneReflections, Vector};
 use tlsph_neighbours::CellGrid;
 
 /// Participants per parallel task of the loops over participants (here and in the solver's
@@ -15,10 +15,26 @@ pub const PARTICIPANTS_PER_TASK: usize = 256;
 /// Chunk length of the deterministic energy/force sums.
 const CHUNK: usize = 4096;
 
+/// A candidate partner seen through symmetry planes: participant `partner` reflected across
+/// the planes of `mask` (bit k: plane k of the [`PlaneReflections`]). It stands for the
+/// partner's mirror image in the full model, at M(x), moving with M v.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct ImagePartner {
+    /// Participant index of the real partner.
+    pub partner: u32,
+    /// Planes it is reflected across (never 0).
+    pub mask: u32,
+}
+
 /// Participants of a contact and their candidate partners (CSR, participant indices).
 ///
 /// A participant is a particle whose body takes part; participants are numbered in ascending
 /// particle order, and every per-participant array of a contact law uses that numbering.
+///
+/// With symmetry planes ([`Self::with_mirrors`]) the list also holds, per participant, the
+/// mirror images of participants within reach ([`Self::images_of`]): the full model's
+/// particles beyond the planes, which a contact at a plane touches (numerics.md §13.1).
+/// Without planes nothing is allocated for them.
 #[derive(Debug, Clone)]
 pub struct ContactCandidates<const D: usize> {
     /// Particle index of each participant (ascending).
@@ -38,6 +54,11 @@ pub struct ContactCandidates<const D: usize> {
     positions_at_build: Vec<Vector<D>>,
     offsets: Vec<usize>,
     candidates: Vec<u32>,
+    /// Symmetry planes (empty: no images).
+    mirrors: PlaneReflections<D>,
+    /// Image candidates (CSR; empty without planes).
+    image_offsets: Vec<usize>,
+    images: Vec<ImagePartner>,
     rebuilds: u64,
     /// Per-chunk (energy, force on the reported body).
     chunk_sums: Vec<(f64, Vector<D>)>,
@@ -69,9 +90,27 @@ impl<const D: usize> ContactCandidates<D> {
             positions_at_build: Vec::new(),
             offsets: Vec::with_capacity(n + 1),
             candidates: Vec::new(),
+            mirrors: PlaneReflections::default(),
+            image_offsets: Vec::new(),
+            images: Vec::new(),
             rebuilds: 0,
             chunk_sums: Vec::with_capacity(n.div_ceil(CHUNK)),
         }
+    }
+
+    /// The same list, also searching the mirror images of the participants across the
+    /// symmetry planes `mirrors` (every body on the same side of every plane).
+    pub fn with_mirrors(mut self, mirrors: PlaneReflections<D>) -> Self {
+        if !mirrors.is_empty() {
+            self.image_offsets.reserve(self.participants.len() + 1);
+        }
+        self.mirrors = mirrors;
+        self
+    }
+
+    /// The symmetry planes of the images.
+    pub fn mirrors(&self) -> &PlaneReflections<D> {
+        &self.mirrors
     }
 
     /// Number of participants.
@@ -110,6 +149,16 @@ impl<const D: usize> ContactCandidates<D> {
         &self.candidates[self.offsets[k]..self.offsets[k + 1]]
     }
 
+    /// Mirror images of participants that are candidate partners of participant `k`
+    /// (ascending; empty without symmetry planes).
+    #[inline]
+    pub fn images_of(&self, k: usize) -> &[ImagePartner] {
+        match self.image_offsets.get(k..k + 2) {
+            Some(range) => &self.images[range[0]..range[1]],
+            None => &[],
+        }
+    }
+
     /// Candidate-list rebuilds so far.
     pub fn rebuilds(&self) -> u64 {
         self.rebuilds
@@ -118,13 +167,14 @@ impl<const D: usize> ContactCandidates<D> {
     /// Reads the participants' positions x = X + u (`positions0` + `displacements`, one entry
     /// per particle) and rebuilds the candidate lists if any participant has moved more than
     /// half the skin since the last build (a NaN position counts as moved).
-    /// `accepts(k, body_k, j, body_j)` decides whether participant `j` within the search
-    /// radius is a candidate of `k`.
+    /// `accepts(k, body_k, j, body_j, mask)` decides whether participant `j` within the
+    /// search radius is a candidate of `k`: `j` itself for `mask` 0, its image across the
+    /// planes of `mask` otherwise.
     pub fn refresh(
         &mut self,
         positions0: &[Vector<D>],
         displacements: &[Vector<D>],
-        accepts: impl Fn(usize, u32, usize, u32) -> bool,
+        accepts: impl Fn(usize, u32, usize, u32, u32) -> bool,
     ) {
         let parts = &self.participants;
         self.positions
@@ -150,29 +200,59 @@ impl<const D: usize> ContactCandidates<D> {
         }
     }
 
-    /// Every accepted participant within the search radius, ascending. Allocates only the
-    /// cell grid (and the lists if they grow). Non-finite positions give no candidates (the
-    /// caller reports the non-finite state).
-    fn rebuild(&mut self, accepts: impl Fn(usize, u32, usize, u32) -> bool) {
+    /// Every accepted participant within the search radius, ascending, and every accepted
+    /// image within it. Allocates only the cell grid (and the lists if they grow). Non-finite
+    /// positions give no candidates (the caller reports the non-finite state).
+    fn rebuild(&mut self, accepts: impl Fn(usize, u32, usize, u32, u32) -> bool) {
         self.offsets.clear();
         self.candidates.clear();
         self.offsets.push(0);
+        let with_images = !self.mirrors.is_empty();
+        self.image_offsets.clear();
+        self.images.clear();
+        if with_images {
+            self.image_offsets.push(0);
+        }
+        let n = self.positions.len();
         if let Ok(grid) = CellGrid::new(&self.positions, self.radius) {
-            let r2 = self.radius * self.radius;
+            let (r, r2) = (self.radius, self.radius * self.radius);
             for (k, x) in self.positions.iter().enumerate() {
                 let start = self.candidates.len();
                 let bk = self.body[k];
                 grid.for_each_candidate_with_position(x, |j, xj| {
                     let bj = self.body[j as usize];
-                    if accepts(k, bk, j as usize, bj) && (xj - x).norm_squared() < r2 {
+                    if accepts(k, bk, j as usize, bj, 0) && (xj - x).norm_squared() < r2 {
                         self.candidates.push(j);
                     }
                 });
                 self.candidates[start..].sort_unstable();
                 self.offsets.push(self.candidates.len());
+                if !with_images {
+                    continue;
+                }
+                // |M(x_j) − x_k| = |x_j − M(x_k)|: search around k's image. Only a participant
+                // within the radius of every plane of a mask has partners across them.
+                let start = self.images.len();
+                for mask in self.mirrors.masks() {
+                    if !self.mirrors.within(x, mask, r) {
+                        continue;
+                    }
+                    let y = self.mirrors.point(x, mask);
+                    grid.for_each_candidate_with_position(&y, |j, xj| {
+                        let bj = self.body[j as usize];
+                        if accepts(k, bk, j as usize, bj, mask) && (xj - y).norm_squared() < r2 {
+                            self.images.push(ImagePartner { partner: j, mask });
+                        }
+                    });
+                }
+                self.images[start..].sort_unstable();
+                self.image_offsets.push(self.images.len());
             }
         } else {
-            self.offsets.resize(self.positions.len() + 1, 0);
+            self.offsets.resize(n + 1, 0);
+            if with_images {
+                self.image_offsets.resize(n + 1, 0);
+            }
         }
         self.positions_at_build.clone_from(&self.positions);
         self.rebuilds += 1;

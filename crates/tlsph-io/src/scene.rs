@@ -636,6 +636,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 "must be finite".into(),
             ));
         }
+        let mut modelled_side: Option<(&str, bool)> = None;
         for b in &bodies {
             let above = b.positions.iter().all(|x| x[axis] > position);
             let below = b.positions.iter().all(|x| x[axis] < position);
@@ -645,6 +646,17 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                     "symmetry_plane.position",
                     format!("body `{}` has particles on both sides of, or on, this plane; model only one side", b.name),
                 ));
+            }
+            match modelled_side {
+                None => modelled_side = Some((&b.name, above)),
+                Some((first, side)) if side != above => {
+                    return Err(ctx.error(
+                        &plane.position.span(),
+                        "symmetry_plane.position",
+                        format!("body `{}` lies on the other side of this plane than body `{first}`; a symmetry model keeps every body on the modelled side (the plane mirrors each into the other half)", b.name),
+                    ));
+                }
+                Some(_) => {}
             }
         }
         effects

@@ -4,6 +4,10 @@
 //! 3x3 tensors: a `D`x`D` deformation gradient is embedded with identity padding
 //! (1D = uniaxial strain, 2D = plane strain, numerics.md §0), and a 3x3 stress is projected
 //! back onto the `D`x`D` block the momentum equation needs.
+//!
+//! [`PlaneReflections`] maps points and vectors across sets of coordinate planes: the mirror
+//! images of symmetry models (numerics.md §13.1), shared by the solver's ghost particles and
+//! the contact search.
 
 pub use nalgebra;
 
@@ -98,6 +102,93 @@ pub fn inverse3(m: &Tensor3) -> Option<Tensor3> {
         .filter(|inv| inv.iter().all(|x| x.is_finite()))
 }
 
+/// Reflections across a set of coordinate planes x_a = c (the symmetry planes of
+/// numerics.md §13.1), indexed by a mask of planes (bit k: plane k; mask 0 is the identity).
+/// Across the planes of a mask a point maps to x_a → 2c − x_a and a vector to M v with the
+/// diagonal M = diag(s), s_a = −1 along the normal of each plane in the mask. Several masks
+/// reach the corner images where planes meet (a quarter model's corner ghost: mask 0b11).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PlaneReflections<const D: usize> {
+    /// (normal axis, position) of each plane.
+    planes: Vec<(usize, f64)>,
+    /// Diagonal of M for every mask.
+    signs: Vec<Vector<D>>,
+}
+
+impl<const D: usize> PlaneReflections<D> {
+    /// The planes x_axis = position; `None` if an axis does not exist in `D` dimensions, a
+    /// position is not finite or there are more than 8 planes.
+    pub fn new(planes: impl IntoIterator<Item = (usize, f64)>) -> Option<Self> {
+        let planes: Vec<(usize, f64)> = planes.into_iter().collect();
+        if planes.len() > 8 || planes.iter().any(|&(a, c)| a >= D || !c.is_finite()) {
+            return None;
+        }
+        let signs = (0..1usize << planes.len())
+            .map(|mask| {
+                let mut s = Vector::<D>::repeat(1.0);
+                for (k, &(axis, _)) in planes.iter().enumerate() {
+                    if mask & (1 << k) != 0 {
+                        s[axis] = -s[axis];
+                    }
+                }
+                s
+            })
+            .collect();
+        Some(Self { planes, signs })
+    }
+
+    /// Whether there are no planes.
+    pub fn is_empty(&self) -> bool {
+        self.planes.is_empty()
+    }
+
+    /// The masks of the non-empty plane sets, 1 .. 2^planes.
+    pub fn masks(&self) -> std::ops::Range<u32> {
+        1..self.signs.len().max(1) as u32
+    }
+
+    /// Diagonal s of the reflection M of `mask`.
+    #[inline]
+    pub fn signs(&self, mask: u32) -> Vector<D> {
+        self.signs[mask as usize]
+    }
+
+    /// Diagonal of M for every mask (index = mask; 0: the identity).
+    pub fn sign_table(&self) -> &[Vector<D>] {
+        &self.signs
+    }
+
+    /// Image of the point `x` across every plane in `mask`: x_a → 2c − x_a.
+    #[inline]
+    pub fn point(&self, x: &Vector<D>, mask: u32) -> Vector<D> {
+        let mut image = *x;
+        for (k, &(axis, position)) in self.planes.iter().enumerate() {
+            if mask & (1 << k) != 0 {
+                image[axis] = 2.0 * position - image[axis];
+            }
+        }
+        image
+    }
+
+    /// Image M v of the vector `v` (a velocity, a normal) across every plane in `mask`.
+    #[inline]
+    pub fn vector(&self, v: &Vector<D>, mask: u32) -> Vector<D> {
+        v.component_mul(&self.signs[mask as usize])
+    }
+
+    /// Whether `x` lies closer than `reach` to every plane in `mask`: only then can its
+    /// image across them come within `reach` of a point on the same side of the planes.
+    #[inline]
+    pub fn within(&self, x: &Vector<D>, mask: u32, reach: f64) -> bool {
+        self.planes
+            .iter()
+            .enumerate()
+            .all(|(k, &(axis, position))| {
+                mask & (1 << k) == 0 || (x[axis] - position).abs() < reach
+            })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -118,5 +209,35 @@ mod tests {
         assert_relative_eq!(von_mises(&s), 7.0, epsilon = 1e-12);
         // Hydrostatic stress has no deviator.
         assert_relative_eq!(von_mises(&Tensor3::identity()), 0.0, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn reflections_are_involutions_and_compose_at_corners() {
+        let m = PlaneReflections::<3>::new([(0, 1.0), (1, -2.0)]).unwrap();
+        assert_eq!(m.masks(), 1..4);
+        let x = Vector::<3>::new(1.5, -1.0, 7.0);
+        // Across x = 1: 0.5; across y = −2: −3; the corner image takes both.
+        assert_eq!(m.point(&x, 0b01), Vector::<3>::new(0.5, -1.0, 7.0));
+        assert_eq!(m.point(&x, 0b10), Vector::<3>::new(1.5, -3.0, 7.0));
+        assert_eq!(m.point(&x, 0b11), Vector::<3>::new(0.5, -3.0, 7.0));
+        for mask in 0..4 {
+            assert_eq!(m.point(&m.point(&x, mask), mask), x);
+            // An isometry: distances to images are the distances of images.
+            let y = Vector::<3>::new(2.0, 0.5, 6.0);
+            assert_relative_eq!(
+                (m.point(&x, mask) - y).norm(),
+                (x - m.point(&y, mask)).norm(),
+                epsilon = 1e-14
+            );
+        }
+        let v = Vector::<3>::new(1.0, 2.0, 3.0);
+        assert_eq!(m.vector(&v, 0b11), Vector::<3>::new(-1.0, -2.0, 3.0));
+        // Within 1 of both planes is needed for the corner.
+        assert!(m.within(&x, 0b01, 1.0));
+        assert!(!m.within(&x, 0b11, 1.0));
+        assert!(m.within(&x, 0b11, 1.01));
+        assert!(PlaneReflections::<2>::new([(2, 0.0)]).is_none());
+        assert!(PlaneReflections::<2>::new([(0, f64::NAN)]).is_none());
+        assert!(PlaneReflections::<2>::new([]).unwrap().masks().is_empty());
     }
 }

@@ -17,7 +17,7 @@ use crate::error::SetupError;
 use crate::model::SymmetryPlane;
 use crate::particles::Particles;
 use rayon::prelude::*;
-use tlsph_math::Vector;
+use tlsph_math::{PlaneReflections, Vector};
 
 /// Symmetry ghosts: particle `first + g` mirrors real particle `parent[g]` with component
 /// signs `signs[g]` (numerics.md §13.1: u_g = M u_p, v_g = M v_p, P_g = M P_p M).
@@ -145,20 +145,20 @@ impl<const D: usize> Ghosts<D> {
         self.signs.clear();
         self.mask.clear();
         self.of.clear();
-        let signs = reflection_signs::<D>(planes);
-        for (mask, &s) in signs.iter().enumerate().skip(1) {
+        let mirror = reflections::<D>(planes);
+        for mask in mirror.masks() {
             for i in (0..n_real).filter(|&i| alive(i)) {
                 let x = p.positions0[i] + p.displacements[i];
-                if !within_reach(&x, planes, mask, reach) {
+                if !mirror.within(&x, mask, reach) {
                     continue;
                 }
-                let image0 = reflect(&p.positions0[i], planes, mask);
+                let image0 = mirror.point(&p.positions0[i], mask);
                 p.push(image0, p.volumes0[i], 0.0, Vector::zeros());
                 let ghost = p.len() - 1;
                 p.masses[ghost] = p.masses[i];
                 self.parent.push(i);
-                self.signs.push(s);
-                self.mask.push(mask as u32);
+                self.signs.push(mirror.signs(mask));
+                self.mask.push(mask);
             }
         }
         self.refresh_kinematics(p);
@@ -167,54 +167,62 @@ impl<const D: usize> Ghosts<D> {
     }
 }
 
-/// Diagonal of the reflection M of every plane set (index: mask, bit k = plane k):
-/// s_a = −1 along the normal of each plane in the set.
-pub(crate) fn reflection_signs<const D: usize>(planes: &[SymmetryPlane]) -> Vec<Vector<D>> {
-    (0..1usize << planes.len())
-        .map(|mask| {
-            let mut s = Vector::<D>::repeat(1.0);
-            for (k, plane) in planes.iter().enumerate() {
-                if mask & (1 << k) != 0 {
-                    s[plane.axis] = -s[plane.axis];
+/// The reflections across the declared planes (numerics.md §13.1). The planes passed
+/// [`check_planes`] at setup (every axis exists, every position is finite, at most 8 planes),
+/// so the construction cannot fail here.
+pub(crate) fn reflections<const D: usize>(planes: &[SymmetryPlane]) -> PlaneReflections<D> {
+    PlaneReflections::new(planes.iter().map(|p| (p.axis, p.position))).unwrap_or_default()
+}
+
+/// Input check of a symmetry model: at most 8 planes, each existing in `D` dimensions, and
+/// every body (name, particles at setup) strictly on one side of each plane, the same side for
+/// all bodies (a body on the far side would meet the images of the others, not the
+/// modelled half). The error names the first body off its side.
+pub(crate) fn check_planes<'a, const D: usize>(
+    bodies: impl IntoIterator<Item = (&'a str, &'a [Vector<D>])>,
+    planes: &[SymmetryPlane],
+) -> Result<(), SetupError> {
+    if planes.is_empty() {
+        return Ok(());
+    }
+    let mut first: Option<(&str, Vec<f64>)> = None;
+    for (name, positions) in bodies {
+        check_plane_sides(name, positions, planes)?;
+        let Some(x) = positions.first() else {
+            continue;
+        };
+        let sides: Vec<f64> = planes
+            .iter()
+            .map(|p| (x[p.axis] - p.position).signum())
+            .collect();
+        match &first {
+            None => first = Some((name, sides)),
+            Some((other, expected)) => {
+                if let Some(k) = (0..planes.len()).find(|&k| sides[k] != expected[k]) {
+                    return Err(SetupError::InvalidBody {
+                        body: name.to_string(),
+                        message: format!(
+                            "lies on the other side of the symmetry plane x[{}] = {} than body `{other}`: a symmetry model keeps every body on the modelled side",
+                            planes[k].axis, planes[k].position
+                        ),
+                    });
                 }
             }
-            s
-        })
-        .collect()
-}
-
-/// Image of the point `x` across every plane in `mask`: x_a → 2c − x_a.
-pub(crate) fn reflect<const D: usize>(
-    x: &Vector<D>,
-    planes: &[SymmetryPlane],
-    mask: usize,
-) -> Vector<D> {
-    let mut image = *x;
-    for (k, plane) in planes.iter().enumerate() {
-        if mask & (1 << k) != 0 {
-            image[plane.axis] = 2.0 * plane.position - image[plane.axis];
         }
     }
-    image
-}
-
-/// Whether `x` lies within `reach` of every plane in `mask`.
-fn within_reach<const D: usize>(
-    x: &Vector<D>,
-    planes: &[SymmetryPlane],
-    mask: usize,
-    reach: f64,
-) -> bool {
-    planes
-        .iter()
-        .enumerate()
-        .all(|(k, plane)| mask & (1 << k) == 0 || (x[plane.axis] - plane.position).abs() < reach)
+    if PlaneReflections::<D>::new(planes.iter().map(|p| (p.axis, p.position))).is_none() {
+        return Err(SetupError::InvalidConfig {
+            field: "symmetry_plane",
+            message: format!("at most 8 symmetry planes, got {}", planes.len()),
+        });
+    }
+    Ok(())
 }
 
 /// Input check: every plane exists in `D` dimensions and the body `name` (its particles at
 /// `positions`) lies strictly on one side of each plane. The error names the first particle
 /// off the body's side (the side of its first particle).
-pub(crate) fn check_plane_sides<const D: usize>(
+fn check_plane_sides<const D: usize>(
     name: &str,
     positions: &[Vector<D>],
     planes: &[SymmetryPlane],

@@ -10,7 +10,7 @@ use crate::effects::{
 };
 use crate::error::{SetupError, StepError};
 use crate::fields::ParticleField;
-use crate::ghosts::{check_plane_sides, reflect, reflection_signs, Ghosts};
+use crate::ghosts::{check_planes, reflections, Ghosts};
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticState};
@@ -205,14 +205,16 @@ impl<const D: usize> Simulation<D> {
         // Updated-Lagrangian ghosts follow the current positions and are built with the first
         // Verlet list; the reference bonds (for the stability metrics) then have none.
         let updated_lagrangian = config.formulation == Formulation::UpdatedLagrangian;
-        let reference_planes: &[crate::model::SymmetryPlane] = if updated_lagrangian {
-            for info in &bodies {
-                check_plane_sides(
-                    &info.name,
+        check_planes(
+            bodies.iter().map(|info| {
+                (
+                    info.name.as_str(),
                     &particles.positions0[info.range.clone()],
-                    &model.effects.symmetry_planes,
-                )?;
-            }
+                )
+            }),
+            &model.effects.symmetry_planes,
+        )?;
+        let reference_planes: &[crate::model::SymmetryPlane] = if updated_lagrangian {
             &[]
         } else {
             &model.effects.symmetry_planes
@@ -224,7 +226,6 @@ impl<const D: usize> Simulation<D> {
             reference_planes,
             &[],
             corrected,
-            true,
         )?;
 
         let prescribed = model
@@ -710,7 +711,6 @@ impl<const D: usize> Simulation<D> {
             &self.planes,
             &reference.kernel_scale,
             corrected,
-            false,
         )
         .map_err(|e| StepError::ReferenceUpdate {
             step,
@@ -1569,7 +1569,7 @@ fn rebuild_current_ghosts<const D: usize>(
 /// reference bonds with their gradients, built on the reference positions `positions0`
 /// (numerics.md §4.2, §6, §13.1): at setup, and again at every reference update.
 ///
-/// At `setup` every body must lie strictly on one side of each plane (an input check). At a
+/// At setup every body lies strictly on one side of each plane (`check_planes` ran). At a
 /// reference update a particle that has drifted across a plane (a discretisation artefact
 /// next to the plane, which the full model shows as two mirror particles passing each other)
 /// is mirrored like any other: the plane is a symmetry of the solution, not a wall.
@@ -1580,7 +1580,6 @@ fn build_reference<const D: usize>(
     planes: &[crate::model::SymmetryPlane],
     kernel_scale: &[f64],
     corrected: bool,
-    setup: bool,
 ) -> Result<(Ghosts<D>, Bonds<D>, CorrectionReport), SetupError> {
     let n_real = particles.len();
     let mut ghosts = Ghosts::default();
@@ -1591,7 +1590,7 @@ fn build_reference<const D: usize>(
             .get(info.range.clone())
             .filter(|s| s.iter().any(|&s| s != 1.0))
             .unwrap_or(&[]);
-        let mut local = mirror_body(info, particles, planes, kernel, scale, setup)?;
+        let mut local = mirror_body(info, particles, planes, kernel, scale);
         // Append this body's ghosts as particles (never integrated; refreshed each step).
         for (k, &(parent, mask)) in local.ghosts.iter().enumerate() {
             let global_parent = info.range.start + parent;
@@ -1640,17 +1639,14 @@ fn build_reference<const D: usize>(
 /// The body's reals and their mirror images across every non-empty combination of symmetry
 /// planes within the kernel support (corner ghosts when several planes meet). With kernel
 /// factors `scale` (body-local, empty: all 1), the image of particle I can meet a particle J
-/// within 2h (s_I + s_J)/2, so I is mirrored within 2h (s_I + s_max)/2 of a plane. With
-/// `check_sides`, the planes must exist in `D` dimensions and every real must lie strictly on
-/// one side of each.
+/// within 2h (s_I + s_J)/2, so I is mirrored within 2h (s_I + s_max)/2 of a plane.
 fn mirror_body<const D: usize>(
     info: &BodyInfo,
     particles: &Particles<D>,
     planes: &[crate::model::SymmetryPlane],
     kernel: tlsph_kernels::AnyKernel,
     scale: &[f64],
-    check_sides: bool,
-) -> Result<BodyBonds<D>, SetupError> {
+) -> BodyBonds<D> {
     let largest = scale.iter().copied().fold(1.0, f64::max);
     let support = |i: usize| match scale.get(i) {
         None => kernel.support_radius(),
@@ -1658,9 +1654,6 @@ fn mirror_body<const D: usize>(
     };
     let reals = &particles.positions0[info.range.clone()];
     let n_real = reals.len();
-    if check_sides {
-        check_plane_sides(&info.name, reals, planes)?;
-    }
     // How far particles have drifted across each plane (0 at setup): a particle within
     // support of the ghost of a drifted particle needs a ghost of its own, so the band of
     // mirrored particles widens by that depth.
@@ -1675,13 +1668,12 @@ fn mirror_body<const D: usize>(
                 .fold(0.0, f64::max)
         })
         .collect();
-    let signs = reflection_signs::<D>(planes);
-    let n_masks = signs.len();
+    let mirror = reflections::<D>(planes);
     let mut positions0 = reals.to_vec();
     let mut volumes0 = particles.volumes0[info.range.clone()].to_vec();
     let mut ghosts = Vec::new();
     let mut ghost_of = std::collections::HashMap::new();
-    for mask in 1..n_masks {
+    for mask in mirror.masks() {
         for (i, x) in reals.iter().enumerate() {
             let near = planes.iter().enumerate().all(|(k, plane)| {
                 mask & (1 << k) == 0
@@ -1690,25 +1682,25 @@ fn mirror_body<const D: usize>(
             if !near {
                 continue;
             }
-            let image = reflect(x, planes, mask);
-            ghost_of.insert((i, mask as u32), positions0.len());
-            ghosts.push((i, mask as u32));
+            let image = mirror.point(x, mask);
+            ghost_of.insert((i, mask), positions0.len());
+            ghosts.push((i, mask));
             positions0.push(image);
             volumes0.push(volumes0[i]);
         }
     }
-    Ok(BodyBonds {
+    BodyBonds {
         global: info.range.clone().collect(),
         n_real,
         positions0,
         volumes0,
         ghosts,
         ghost_of,
-        signs,
+        signs: mirror.sign_table().to_vec(),
         neighbours: Default::default(),
         kernel,
         kernel_scale: Vec::new(),
-    })
+    }
 }
 
 /// Chunk length of deterministic parallel reductions and searches.
@@ -2057,6 +2049,7 @@ fn build_contact<const D: usize>(
         nb,
         &body_indices(bodies, n_real),
         positions0,
+        reflections(&model.effects.symmetry_planes),
     ))
 }
 
@@ -2170,6 +2163,7 @@ fn build_penalty_contact<const D: usize>(
         kernels.to_vec(),
         &body_indices(bodies, n_real),
         driven,
+        reflections(&model.effects.symmetry_planes),
     ))
 }
 

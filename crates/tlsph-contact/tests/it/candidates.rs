@@ -2,7 +2,7 @@
 //! deterministic sums and time-step vote across thread counts.
 
 use rayon::ThreadPoolBuilder;
-use tlsph_contact::{ContactCandidates, Vector};
+use tlsph_contact::{ContactCandidates, ImagePartner, PlaneReflections, Vector};
 
 /// Deterministic points: two 2D blocks of `side`² jittered particles (bodies 0 and 1) facing
 /// each other across a gap, and a third body (2) that takes no part.
@@ -34,7 +34,7 @@ fn scene(side: usize) -> (Vec<Vector<2>>, Vec<u32>) {
     (points, body)
 }
 
-fn cross_body(_: usize, a: u32, _: usize, b: u32) -> bool {
+fn cross_body(_: usize, a: u32, _: usize, b: u32, _: u32) -> bool {
     a != b
 }
 
@@ -64,6 +64,52 @@ fn candidates_are_every_cross_body_pair_within_reach_plus_skin() {
     assert!(
         pairs > 20,
         "the blocks face each other across the gap ({pairs} pairs)"
+    );
+}
+
+#[test]
+fn with_symmetry_planes_the_images_within_reach_are_listed_as_brute_force_finds_them() {
+    // Quarter model: the planes x = −0.5 and y = −0.45 bound the scene's blocks (x ≥ −0.1,
+    // y ≥ −0.1, jittered); a participant near a plane meets the images of the other body's
+    // participants across it, and near both planes the corner images too.
+    let (points, body) = scene(8);
+    let displacements = vec![Vector::zeros(); points.len()];
+    let (reach, skin) = (1.0, 0.5);
+    let radius2 = (reach + skin) * (reach + skin);
+    let mirrors = PlaneReflections::<2>::new([(0, -0.5), (1, -0.45)]).unwrap();
+    let mut list =
+        ContactCandidates::new(&body, |b| b < 2, reach, skin).with_mirrors(mirrors.clone());
+    // Self-images too (the same body), to reach the corner images of the first block.
+    list.refresh(&points, &displacements, |_, _, _, _, _| true);
+    let parts = list.participants();
+    let mut per_mask = [0usize; 4];
+    for k in 0..list.len() {
+        let x = points[parts[k] as usize];
+        let mut expected = Vec::new();
+        for j in 0..list.len() as u32 {
+            for mask in 1..4 {
+                let y = mirrors.point(&points[parts[j as usize] as usize], mask);
+                if (y - x).norm_squared() < radius2 {
+                    expected.push(ImagePartner { partner: j, mask });
+                    per_mask[mask as usize] += 1;
+                }
+            }
+        }
+        expected.sort_unstable();
+        assert_eq!(list.images_of(k), expected.as_slice(), "participant {k}");
+    }
+    assert!(
+        per_mask[1..].iter().all(|&n| n > 0),
+        "images across each plane and the corner: {per_mask:?}"
+    );
+    // Without planes no image is listed.
+    let mut plain = ContactCandidates::new(&body, |b| b < 2, reach, skin);
+    plain.refresh(&points, &displacements, |_, _, _, _, _| true);
+    assert!((0..plain.len()).all(|k| plain.images_of(k).is_empty()));
+    assert_eq!(
+        (0..plain.len()).map(|k| plain.of(k)).collect::<Vec<_>>(),
+        (0..list.len()).map(|k| list.of(k)).collect::<Vec<_>>(),
+        "the planes leave the real candidates alone"
     );
 }
 

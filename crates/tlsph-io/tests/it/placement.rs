@@ -1,5 +1,6 @@
-//! Where bodies start: two bodies that start inside each other, or a body that starts behind
-//! a rigid wall, are refused by `tlsph check` at their line, naming the bodies and a particle.
+//! Where bodies start: two bodies that start inside each other, a body that starts behind a
+//! rigid wall, or bodies on both sides of a symmetry plane are refused by `tlsph check` at
+//! their line, naming the bodies (and a particle).
 
 use super::{error_of, line_of};
 use tlsph_io::parse_scene;
@@ -74,4 +75,27 @@ fn a_body_that_starts_behind_a_wall_is_refused_at_the_wall() {
             && e.message.contains("is 1.500e-3 on the far side"),
         "{e}"
     );
+}
+
+#[test]
+fn bodies_on_both_sides_of_a_symmetry_plane_are_refused_at_the_plane() {
+    // The plane x = 10.25 mm between the blocks: each lies on one side, but a symmetry model
+    // keeps every body on the modelled side (each would meet the other's mirror image).
+    let text = TWO_BLOCKS.replace("GAP", "10.5e-3")
+        + "\n[[symmetry_plane]]\naxis = \"x\"\nposition = 10.25e-3\n";
+    let e = error_of(&text);
+    assert_eq!(e.field, "symmetry_plane.position", "{e}");
+    assert_eq!(e.line, Some(line_of(&text, "position = 10.25e-3")), "{e}");
+    assert!(
+        e.message
+            .contains("body `right` lies on the other side of this plane than body `left`"),
+        "{e}"
+    );
+    // Both on the same side of x = 0 is a valid half model.
+    parse_scene(
+        &(TWO_BLOCKS.replace("GAP", "10.5e-3")
+            + "\n[[symmetry_plane]]\naxis = \"x\"\nposition = -0.1e-3\n"),
+        "blocks.toml",
+    )
+    .unwrap();
 }

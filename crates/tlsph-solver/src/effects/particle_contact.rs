@@ -12,6 +12,12 @@
 //! particles would otherwise pass through each other): the same law between its particles
 //! that were not kernel neighbours in the reference configuration (|X_I − X_K| ≥ 2h), so
 //! self-contact never acts inside the continuum, only between surfaces that meet.
+//!
+//! With symmetry planes a participant near a plane also meets the mirror images of the
+//! participants beyond it (numerics.md §13.1), as the full model's particles there, with the
+//! same law; each image pair is evaluated from both ends (I with the image of K, K with the
+//! image of I), so momentum and the stored energy are those of the modelled part of the full
+//! model.
 
 use super::{Configuration, Effect, EffectContext};
 use crate::particles::Particles;
@@ -19,7 +25,7 @@ use rayon::prelude::*;
 use tlsph_contact::{
     ContactCandidates, PotentialLaw, DT_FACTOR, PARTICIPANTS_PER_TASK, SKIN_FRACTION,
 };
-use tlsph_math::Vector;
+use tlsph_math::{PlaneReflections, Vector};
 
 /// Potential-type contact between particles of different bodies (numerics.md §12.2).
 #[derive(Debug, Clone)]
@@ -31,6 +37,8 @@ pub struct ParticleContact<const D: usize> {
     candidates: ContactCandidates<D>,
     /// Reference positions of the participants (self-contact exclusion).
     positions0: Vec<Vector<D>>,
+    /// Symmetry planes whose images the contact sees (empty: none).
+    mirrors: PlaneReflections<D>,
     /// Per participant: contact force, half of its pairs' potential, summed pair stiffness.
     force: Vec<Vector<D>>,
     half_potential: Vec<f64>,
@@ -45,12 +53,14 @@ impl<const D: usize> ParticleContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
     /// symmetric; a diagonal entry is self-contact); `body_of` gives the body of each of the
     /// real particles and `positions0` their reference positions. The resultant reported is
-    /// the contact force on the lowest-index body that takes part.
+    /// the contact force on the lowest-index body that takes part. With symmetry planes
+    /// `mirrors` a participant also meets the images of the participants beyond them.
     pub(crate) fn new(
         laws: Vec<Option<PotentialLaw>>,
         n_bodies: usize,
         body_of: &[u32],
         positions0: &[Vector<D>],
+        mirrors: PlaneReflections<D>,
     ) -> Self {
         let takes_part = |b: u32| {
             let row = b as usize * n_bodies;
@@ -60,7 +70,8 @@ impl<const D: usize> ParticleContact<D> {
         let min_d0 = d0s.clone().fold(f64::INFINITY, f64::min);
         let max_d0 = d0s.fold(0.0, f64::max);
         let candidates =
-            ContactCandidates::new(body_of, takes_part, max_d0, SKIN_FRACTION * min_d0);
+            ContactCandidates::new(body_of, takes_part, max_d0, SKIN_FRACTION * min_d0)
+                .with_mirrors(mirrors.clone());
         let reference = candidates
             .participants()
             .iter()
@@ -72,6 +83,7 @@ impl<const D: usize> ParticleContact<D> {
             laws,
             candidates,
             positions0: reference,
+            mirrors,
             force: vec![Vector::zeros(); n],
             half_potential: vec![0.0; n],
             stiffness: vec![0.0; n],
@@ -82,20 +94,26 @@ impl<const D: usize> ParticleContact<D> {
     }
 
     /// Current positions, a rebuild of the candidate list if needed, and forces, potentials
-    /// and stiffnesses at x^n (one gather per participant).
+    /// and stiffnesses at x^n (one gather per participant, over its partners and, with
+    /// symmetry planes, their mirror images).
     fn evaluate(&mut self, p: &Particles<D>) {
-        let (laws, n_bodies, positions0) = (&self.laws, self.n_bodies, &self.positions0);
+        let (laws, n_bodies) = (&self.laws, self.n_bodies);
+        let (positions0, mirrors) = (&self.positions0, &self.mirrors);
         let law = |a: u32, b: u32| laws[a as usize * n_bodies + b as usize].as_ref();
         // Candidates: a participant of a body in contact; for self-contact, never a reference
-        // kernel neighbour (nor I itself).
+        // kernel neighbour (nor I itself), images included (a bond to a ghost).
         self.candidates
-            .refresh(&p.positions0, &p.displacements, |k, bk, j, bj| {
+            .refresh(&p.positions0, &p.displacements, |k, bk, j, bj, mask| {
                 law(bk, bj).is_some_and(|law| {
-                    bj != bk || law.allows_self_pair((positions0[j] - positions0[k]).norm_squared())
+                    bj != bk || {
+                        let image0 = mirrors.point(&positions0[j], mask);
+                        law.allows_self_pair((image0 - positions0[k]).norm_squared())
+                    }
                 })
             });
         let candidates = &self.candidates;
         let (x, body, skin) = (candidates.positions(), candidates.body(), candidates.skin());
+        let mirrors = candidates.mirrors();
         self.force
             .par_iter_mut()
             .zip(self.half_potential.par_iter_mut())
@@ -105,12 +123,8 @@ impl<const D: usize> ParticleContact<D> {
             .for_each(|(k, ((f, e), s))| {
                 let (mut force, mut energy, mut stiffness) = (Vector::<D>::zeros(), 0.0, 0.0);
                 let xk = x[k];
-                for &j in candidates.of(k) {
-                    let j = j as usize;
-                    let Some(law) = law(body[k], body[j]) else {
-                        continue;
-                    };
-                    let r_vec = xk - x[j];
+                let mut pair = |law: &PotentialLaw, xj: Vector<D>| {
+                    let r_vec = xk - xj;
                     let r = r_vec.norm();
                     // Beyond d0 no force, but a pair within the skin may touch during the
                     // next step: its stiffness at first touch joins the time-step vote, so a
@@ -119,7 +133,7 @@ impl<const D: usize> ParticleContact<D> {
                         if r < law.d0() + skin {
                             stiffness += law.touch_stiffness();
                         }
-                        continue;
+                        return;
                     }
                     // Coincident particles have no direction (force 0, potential booked).
                     let state = law.evaluate(r);
@@ -128,6 +142,19 @@ impl<const D: usize> ParticleContact<D> {
                     }
                     energy += 0.5 * state.potential;
                     stiffness += state.stiffness;
+                };
+                for &j in candidates.of(k) {
+                    if let Some(law) = law(body[k], body[j as usize]) {
+                        pair(law, x[j as usize]);
+                    }
+                }
+                // The full model's images beyond the symmetry planes: the image pair's
+                // energy is split as any pair's (the image of I holds the other half).
+                for image in candidates.images_of(k) {
+                    let j = image.partner as usize;
+                    if let Some(law) = law(body[k], body[j]) {
+                        pair(law, mirrors.point(&x[j], image.mask));
+                    }
                 }
                 *f = force;
                 *e = energy;

@@ -17,6 +17,12 @@
 //! work −∫ Σ f·v dt is booked as the `contact` energy column: penalty energy still stored in
 //! compressed pairs plus what friction dissipated.
 //!
+//! With symmetry planes a participant near a plane also meets the mirror images of the
+//! participants beyond it (numerics.md §13.1): an image carries its parent's surface flag and
+//! neighbour count, and its reflected position, normal and velocity, as the full model's
+//! particle there. The counts and normals of particles near a plane already include the
+//! symmetry ghosts among their neighbours.
+//!
 //! Not built: Fuller's multiple-normal refinement and the corner class (n_I ≤ 0.5 n_full), which
 //! only that refinement uses.
 
@@ -27,7 +33,7 @@ use tlsph_contact::{
     SKIN_FRACTION,
 };
 use tlsph_kernels::{AnyKernel, Kernel};
-use tlsph_math::Vector;
+use tlsph_math::{PlaneReflections, Vector};
 
 /// Fuller's particle-type penalty contact with friction (numerics.md §12.1).
 #[derive(Debug, Clone)]
@@ -63,13 +69,16 @@ impl<const D: usize> PenaltyContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
     /// symmetric, no diagonal); `kernels` per body, `body_of` per real particle, `driven` per
     /// body (motion entirely prescribed). The resultant reported is the contact force on the
-    /// lowest-index body that takes part.
+    /// lowest-index body that takes part. With symmetry planes `mirrors` a participant also
+    /// meets the images of the participants beyond them, with reflected normals and
+    /// velocities.
     pub(crate) fn new(
         laws: Vec<Option<PenaltyLaw>>,
         n_bodies: usize,
         kernels: Vec<AnyKernel>,
         body_of: &[u32],
         driven: Vec<bool>,
+        mirrors: PlaneReflections<D>,
     ) -> Self {
         let takes_part = |b: u32| {
             let row = b as usize * n_bodies;
@@ -82,7 +91,8 @@ impl<const D: usize> PenaltyContact<D> {
             .fold(f64::INFINITY, f64::min);
         let max_zone = active.map(PenaltyLaw::zone_radius).fold(0.0, f64::max);
         let candidates =
-            ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach);
+            ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach)
+                .with_mirrors(mirrors);
         let n = candidates.len();
         let driven = candidates
             .body()
@@ -151,7 +161,7 @@ impl<const D: usize> PenaltyContact<D> {
         let position = |j: usize| p.positions0[j] + p.displacements[j];
         let (laws, n_bodies) = (&self.laws, self.n_bodies);
         self.candidates
-            .refresh(&p.positions0, &p.displacements, |_, bk, _, bj| {
+            .refresh(&p.positions0, &p.displacements, |_, bk, _, bj, _| {
                 laws[bk as usize * n_bodies + bj as usize].is_some()
             });
         // 1. Same-type neighbour counts.
@@ -261,25 +271,37 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         let mut stiffness = std::mem::take(&mut self.stiffness);
         let this = &*self;
         let (x, normal) = (this.candidates.positions(), &this.normal);
-        let skin = this.candidates.skin();
+        let (skin, mirrors) = (this.candidates.skin(), this.candidates.mirrors());
         stiffness
             .par_iter_mut()
             .enumerate()
             .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, s)| {
                 let mut sum = 0.0;
-                for &q in this.candidates.of(k) {
-                    let q = q as usize;
+                // Partner q at x_q with normal n_q (an image: both reflected).
+                let mut pair = |q: usize, x_q: Vector<D>, n_q: Vector<D>| {
                     let Some(law) = this.law(k, q) else {
-                        continue;
+                        return;
                     };
-                    let d = x[q] - x[k];
+                    let d = x_q - x[k];
                     if this.defines_normal(k, q) {
                         sum += law.vote_stiffness(&d, &normal[k], skin).unwrap_or(0.0);
                     }
                     if this.defines_normal(q, k) {
-                        sum += law.vote_stiffness(&-d, &normal[q], skin).unwrap_or(0.0);
+                        sum += law.vote_stiffness(&-d, &n_q, skin).unwrap_or(0.0);
                     }
+                };
+                for &q in this.candidates.of(k) {
+                    let q = q as usize;
+                    pair(q, x[q], normal[q]);
+                }
+                for image in this.candidates.images_of(k) {
+                    let (q, mask) = (image.partner as usize, image.mask);
+                    pair(
+                        q,
+                        mirrors.point(&x[q], mask),
+                        mirrors.vector(&normal[q], mask),
+                    );
                 }
                 *s = sum;
             });
@@ -311,33 +333,46 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         let mut force = std::mem::take(&mut self.force);
         let this = &*self;
         let (x, v, normal) = (this.candidates.positions(), &this.velocity, &this.normal);
+        let mirrors = this.candidates.mirrors();
         force
             .par_iter_mut()
             .enumerate()
             .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, f)| {
                 let mut sum = Vector::<D>::zeros();
-                for &q in this.candidates.of(k) {
-                    let q = q as usize;
+                // Partner q at x_q with normal n_q and velocity v_q (an image: all reflected).
+                let mut pair = |q: usize, x_q: Vector<D>, n_q: Vector<D>, v_q: Vector<D>| {
                     let Some(law) = this.law(k, q) else {
-                        continue;
+                        return;
                     };
                     // k as the surface particle of the pair (k, q): it feels −f_q.
                     if this.defines_normal(k, q) {
                         if let Some(on_q) =
-                            law.force_on_partner(&(x[q] - x[k]), &normal[k], &(v[q] - v[k]))
+                            law.force_on_partner(&(x_q - x[k]), &normal[k], &(v_q - v[k]))
                         {
                             sum -= on_q;
                         }
                     }
                     // k as the partner of surface particle q.
                     if this.defines_normal(q, k) {
-                        if let Some(on_k) =
-                            law.force_on_partner(&(x[k] - x[q]), &normal[q], &(v[k] - v[q]))
+                        if let Some(on_k) = law.force_on_partner(&(x[k] - x_q), &n_q, &(v[k] - v_q))
                         {
                             sum += on_k;
                         }
                     }
+                };
+                for &q in this.candidates.of(k) {
+                    let q = q as usize;
+                    pair(q, x[q], normal[q], v[q]);
+                }
+                for image in this.candidates.images_of(k) {
+                    let (q, mask) = (image.partner as usize, image.mask);
+                    pair(
+                        q,
+                        mirrors.point(&x[q], mask),
+                        mirrors.vector(&normal[q], mask),
+                        mirrors.vector(&v[q], mask),
+                    );
                 }
                 *f = sum;
             });

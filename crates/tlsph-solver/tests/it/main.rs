@@ -4,6 +4,7 @@
 mod allocation;
 mod body_force;
 mod contact;
+mod contact_symmetry;
 mod damage;
 mod effects;
 mod long_runs;

@@ -185,6 +185,34 @@ fn a_body_across_a_symmetry_plane_is_rejected() {
 }
 
 #[test]
+fn bodies_on_both_sides_of_a_symmetry_plane_are_rejected() {
+    // Each block lies on one side of x = 0, but on different sides: the image of each would
+    // overlap the other, so the model would not be the mirror-symmetric half of anything.
+    let dx = 0.05;
+    let block = |x0: f64| -> Vec<Vector<2>> {
+        super::lattice([4, 4], dx)
+            .iter()
+            .map(|x| x + Vector::<2>::new(x0, 0.0))
+            .collect()
+    };
+    let mut m = model(block(0.1), dx, |_| Vector::<2>::zeros(), Setup::default());
+    let mut other = m.bodies[0].clone();
+    other.name = "left".into();
+    other.positions = block(-0.4);
+    m.bodies.push(other);
+    m.effects.symmetry_planes = vec![SymmetryPlane {
+        axis: 0,
+        position: 0.0,
+    }];
+    let err = Simulation::new(m).unwrap_err();
+    assert!(
+        err.to_string().contains("`left`")
+            && err.to_string().contains("other side of the symmetry plane"),
+        "{err}"
+    );
+}
+
+#[test]
 fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
     // The halves x < 0 and x > 0 fly apart at ±0.05 c (mirror-symmetric about both axes):
     // the two central columns yield, reach the failure strain and fail. With symmetry planes a
