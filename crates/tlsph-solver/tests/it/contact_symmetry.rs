@@ -2,7 +2,8 @@
 //! whole and as a half (2D) or quarter (3D) with symmetry planes through its axis. The
 //! contact of the particles next to a plane must see the mirror images of the other body's
 //! particles beyond it, so the reduced model moves like the full one, for the potential law
-//! (total- and updated-Lagrangian) and the penalty law with friction.
+//! (total- and updated-Lagrangian) and the penalty law with friction; and a body in
+//! self-contact strikes its own image as the full model's two halves strike each other.
 
 use super::contact::{body, config, materials};
 use tlsph_math::Vector;
@@ -259,4 +260,72 @@ fn a_quarter_model_in_contact_at_its_planes_moves_like_the_full_model() {
     );
     let (mismatch, peak) = compare(full, "potential, TL, 3D");
     eprintln!("3D: force mismatch {mismatch:e} of the peak {peak:e}");
+}
+
+#[test]
+fn a_body_in_self_contact_meets_its_own_mirror_image_as_the_full_model_meets_its_other_half() {
+    // Full model: one body of two blocks, 4Δx apart across x = 0 (no reference bond joins
+    // them), closing at ±0.03 in self-contact. Half model: the right block alone with the
+    // plane x = 0, which it strikes as its own image (the image pair's reference distance is
+    // beyond the support, so self-contact accepts it).
+    let block: Vec<Vector<2>> = super::lattice([8, 6], DX)
+        .iter()
+        .map(|x| x + Vector::<2>::new(1.5 * DX, 0.0))
+        .collect();
+    let mirrored: Vec<Vector<2>> = block
+        .iter()
+        .map(|x| Vector::<2>::new(-x[0], x[1]))
+        .collect();
+    let velocities: Vec<Vector<2>> = block
+        .iter()
+        .map(|_| Vector::<2>::new(-0.03, 0.0))
+        .chain(block.iter().map(|_| Vector::<2>::new(0.03, 0.0)))
+        .collect();
+    let mut both = body(
+        "both",
+        0,
+        [block.clone(), mirrored].concat(),
+        DX,
+        Vector::<2>::zeros(),
+    );
+    both.velocities = velocities;
+    let full = Model {
+        config: config(Formulation::TotalLagrangianCorrected, 4.0),
+        materials: materials(),
+        bodies: vec![both],
+        boundaries: vec![],
+        effects: EffectsDescription {
+            contact: Some(ContactDescription {
+                scale: 0.5,
+                exponent: 4.0,
+                pairs: Some(vec![(0, 0)]),
+            }),
+            ..Default::default()
+        },
+    };
+    let mut half = full.clone();
+    half.bodies[0].positions.truncate(block.len());
+    half.bodies[0].volumes.truncate(block.len());
+    half.bodies[0].velocities.truncate(block.len());
+    half.effects.symmetry_planes = vec![SymmetryPlane {
+        axis: 0,
+        position: 0.0,
+    }];
+    let mut a = Simulation::new(full).unwrap();
+    let mut b = Simulation::new(half).unwrap();
+    a.run(|_, _| {}).unwrap();
+    b.run(|_, _| {}).unwrap();
+    assert_eq!(a.steps_done(), b.steps_done());
+    let scale = (0..b.n_particles())
+        .map(|i| a.total_displacement(i).norm())
+        .fold(0.0, f64::max);
+    for i in 0..b.n_particles() {
+        let diff = (a.total_displacement(i) - b.total_displacement(i)).norm();
+        assert!(
+            diff <= 1e-9 * scale,
+            "particle {i}: {diff:e} (scale {scale:e})"
+        );
+    }
+    // It struck its image and rebounded (without the image it would fly through the plane).
+    assert!(b.velocity(0)[0] > 0.0, "no rebound: {}", b.velocity(0));
 }
