@@ -212,9 +212,12 @@ impl PenaltyLaw {
         Some(force)
     }
 
-    /// Normal stiffness of the pair for the time-step vote: the tangent stiffness inside the
-    /// zone, the first-touch stiffness k_c/R within `skin` beyond R (it may touch during the
-    /// next step), else `None`.
+    /// Normal stiffness of the pair for the time-step vote: the tangent stiffness
+    /// w(t) k_c R / r⊥² inside the zone, the first-touch stiffness w(t) k_c / R within `skin`
+    /// beyond R (it may touch during the next step), else `None`. Both carry the tangential
+    /// weight, so the vote is continuous at the zone's side: a lattice partner one spacing to
+    /// the side (t = d0, where the force is zero) must not swing the step on the last bit of
+    /// its position, or a mirrored scene and its half model would step differently.
     #[inline]
     pub fn vote_stiffness<const D: usize>(
         &self,
@@ -226,10 +229,8 @@ impl PenaltyLaw {
             return Some(self.weight(t).0 * self.normal_force(r_n).2);
         }
         let r_n = d.dot(normal);
-        let tangential = d - normal * r_n;
-        (r_n >= self.range
-            && r_n < self.range + skin
-            && tangential.norm_squared() <= self.reach * self.reach)
-            .then_some(self.stiffness / self.range)
+        let t = (d - normal * r_n).norm();
+        (r_n >= self.range && r_n < self.range + skin && t < self.reach)
+            .then(|| self.weight(t).0 * self.stiffness / self.range)
     }
 }

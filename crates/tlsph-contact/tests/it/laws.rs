@@ -162,10 +162,23 @@ fn penalty_force_on_the_axis_is_fullers_and_friction_opposes_slip() {
 fn penalty_vote_covers_pairs_that_may_touch_within_the_skin() {
     let law = penalty_law::<2>(0.0);
     let n = Vector::<2>::new(0.0, 1.0);
-    // Beyond R but within the skin: first-touch stiffness k_c/R = 1.
+    // Beyond R but within the skin: first-touch stiffness w(t) k_c/R, w = (1 − t²)² at
+    // t = 0.2 → 0.9216.
+    assert_relative_eq!(
+        law.vote_stiffness(&Vector::<2>::new(0.2, 1.3), &n, 0.5)
+            .unwrap(),
+        0.9216,
+        max_relative = 1e-14
+    );
+    // At the zone's side the force is zero and so is the vote, continuously: a partner a
+    // round-off inside it votes next to nothing, one just outside not at all.
+    let side = law
+        .vote_stiffness(&Vector::<2>::new(1.0 - 1e-15, 1.3), &n, 0.5)
+        .unwrap();
+    assert!(side < 1e-28, "{side}");
     assert_eq!(
-        law.vote_stiffness(&Vector::<2>::new(0.2, 1.3), &n, 0.5),
-        Some(1.0)
+        law.vote_stiffness(&Vector::<2>::new(1.0 + 1e-15, 1.3), &n, 0.5),
+        None
     );
     assert_eq!(
         law.vote_stiffness(&Vector::<2>::new(0.2, 1.6), &n, 0.5),

@@ -7,6 +7,7 @@ use tlsph_solver::ReferenceSupport;
 mod body_force;
 mod boundaries;
 mod contact;
+mod contact_symmetry;
 mod cuts;
 mod damage;
 mod failure;
