@@ -628,6 +628,16 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 ),
             ));
         }
+        if effects.symmetry_planes.iter().any(|p| p.axis == axis) {
+            return Err(ctx.error(
+                &plane.axis.span(),
+                "symmetry_plane.axis",
+                format!(
+                    "a second plane normal to `{}`: a model has at most one symmetry plane per axis (two parallel planes would mirror each other's images without end)",
+                    plane.axis.get_ref()
+                ),
+            ));
+        }
         let position = *plane.position.get_ref();
         if !position.is_finite() {
             return Err(ctx.error(

@@ -185,6 +185,17 @@ pub(crate) fn check_planes<'a, const D: usize>(
     if planes.is_empty() {
         return Ok(());
     }
+    for (k, plane) in planes.iter().enumerate() {
+        if planes[..k].iter().any(|p| p.axis == plane.axis) {
+            return Err(SetupError::InvalidConfig {
+                field: "symmetry_planes",
+                message: format!(
+                    "two planes normal to axis {}: at most one symmetry plane per axis (parallel planes would mirror each other's images without end)",
+                    plane.axis
+                ),
+            });
+        }
+    }
     let mut first: Option<(&str, Vec<f64>)> = None;
     for (name, positions) in bodies {
         check_plane_sides(name, positions, planes)?;

@@ -99,3 +99,15 @@ fn bodies_on_both_sides_of_a_symmetry_plane_are_refused_at_the_plane() {
     )
     .unwrap();
 }
+
+#[test]
+fn a_second_plane_normal_to_the_same_axis_is_refused_at_its_axis() {
+    // A plane declared twice made the run panic in the bond builder (a first-user review):
+    // now `tlsph check` refuses it at the second plane's `axis`.
+    let text = TWO_BLOCKS.replace("GAP", "10.5e-3")
+        + "\n[[symmetry_plane]]\naxis = \"x\"\nposition = -0.1e-3\n\n[[symmetry_plane]]\naxis = \"x\" # again\nposition = -0.1e-3\n";
+    let e = error_of(&text);
+    assert_eq!(e.field, "symmetry_plane.axis", "{e}");
+    assert_eq!(e.line, Some(line_of(&text, "# again")), "{e}");
+    assert!(e.message.contains("one symmetry plane per axis"), "{e}");
+}

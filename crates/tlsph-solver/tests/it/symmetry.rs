@@ -213,6 +213,41 @@ fn bodies_on_both_sides_of_a_symmetry_plane_are_rejected() {
 }
 
 #[test]
+fn two_planes_normal_to_one_axis_are_rejected() {
+    // A plane declared twice (or two parallel planes) would mirror each other's images without
+    // end; before this check the bond builder panicked on it.
+    let dx = 0.05;
+    let block: Vec<Vector<2>> = super::lattice([4, 4], dx)
+        .iter()
+        .map(|x| x + Vector::<2>::new(0.1, 0.0))
+        .collect();
+    for second in [0.0, 1.0] {
+        let mut m = model(
+            block.clone(),
+            dx,
+            |_| Vector::<2>::zeros(),
+            Setup::default(),
+        );
+        m.effects.symmetry_planes = vec![
+            SymmetryPlane {
+                axis: 0,
+                position: 0.0,
+            },
+            SymmetryPlane {
+                axis: 0,
+                position: second,
+            },
+        ];
+        let err = Simulation::new(m).unwrap_err();
+        assert!(
+            err.to_string().contains("symmetry_planes")
+                && err.to_string().contains("one symmetry plane per axis"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
     // The halves x < 0 and x > 0 fly apart at ±0.05 c (mirror-symmetric about both axes):
     // the two central columns yield, reach the failure strain and fail. With symmetry planes a
