@@ -2,16 +2,18 @@
 //!
 //! A held velocity component is overwritten every step with the set's value, so the driver
 //! exerts whatever force that takes. Per held component, with v_k = v^{n−½} + Δt* a^n the
-//! velocity the kick gave (internal forces only: effects do not act on held components, see
-//! [`Drivers::absorb`]) and v_p the imposed v^{n+½}:
-//! - the driver's impulse is m (v_p − v_k); its force is that over Δt* minus the effect
-//!   forces it took over (m a_e), so a clamp reports the whole reaction, weight included;
-//! - the work booked is m (v_p − v_k) · ½(v^{n−½} + v_p), the impulse times the mid-step
-//!   velocity (the midpoint rule of the effects' work). It is the kinetic-energy change of the
-//!   held component minus the work of its internal force, so with it kinetic + internal +
-//!   booked energies close for driven scenes as for free ones. The work of the effect forces
-//!   the driver took over is part of it, which keeps the total closed because an effect books
-//!   no energy on held components (the body force's potential skips them).
+//! velocity the kick gave (internal forces only: the effects' forces on held components are
+//! taken over by the driver, see [`Drivers::absorb`]), a_e those effect accelerations, and
+//! v_p the imposed v^{n+½}:
+//! - the driver's force is f = m (v_p − v_k)/Δt* − m a_e, what it takes to move the component
+//!   as imposed against its internal and effect forces, so a clamp reports the whole
+//!   reaction, weight and contact included;
+//! - the work booked is f·v̄ Δt*, with v̄ = ½(v^{n−½} + v_p) the mid-step velocity (the
+//!   midpoint rule of the effects' work). Each effect books its own force's work on the held
+//!   components at the same v̄ (`BookedEffect::held_work`; a conservative effect's stored
+//!   energy already counts held particles), so kinetic + internal + booked energies close for
+//!   driven scenes as for free ones, and `boundary_<name>` is the work of the reported force:
+//!   a rigid indenter pushed into a block books the work of pushing it, not zero.
 //!
 //! The kick spans t^n − ½Δt^n … t^n + ½Δt^{n+1}; the work reported at t^n leaves out the share
 //! ½Δt^{n+1}/Δt* of the last one. That makes it the trapezoidal rule that the internal energy
@@ -20,7 +22,7 @@
 //! 6.7e-4 and second order with the split).
 //!
 //! Nothing here is allocated without `[[boundary]]` tables; the per-step cost is one pass over
-//! the held particles.
+//! the held particles, and one more per declared effect.
 
 use crate::model::VelocityRamp;
 use crate::particles::Particles;
@@ -71,6 +73,8 @@ pub(crate) struct Drivers<const D: usize> {
     current: Vec<Vector<D>>,
     /// Σ m a_e over the held components of each set: the effect forces taken over this step.
     absorbed: Vec<Vector<D>>,
+    /// Σ m a_e·v̄ Δt* over the held components of each set: the effect forces' work this step.
+    absorbed_work: Vec<f64>,
     /// Force of each set on its particles in the last step \[N\].
     forces: Vec<Vector<D>>,
     /// Work done by each set on its particles over all the kicks so far \[J\].
@@ -107,6 +111,7 @@ impl<const D: usize> Drivers<D> {
             held,
             current,
             absorbed: vec![Vector::zeros(); n],
+            absorbed_work: vec![0.0; n],
             forces: vec![Vector::zeros(); n],
             work: vec![0.0; n],
             pending: vec![0.0; n],
@@ -127,6 +132,13 @@ impl<const D: usize> Drivers<D> {
         self.impose_current(velocities);
     }
 
+    /// Takes the sets' velocities at time `at` (the mid-point time of the coming drift) as
+    /// the values this step imposes, before the effects are absorbed (their work on the held
+    /// components is taken at the mid-step velocity, which ends at these values).
+    pub fn prepare_step(&mut self, at: f64) {
+        self.update_current(at);
+    }
+
     /// Sets the held components of `field` to the values of the last imposition (the XSPH
     /// transport velocities, so a held particle never drifts with its neighbours' average).
     pub fn impose_current(&self, field: &mut [Vector<D>]) {
@@ -140,28 +152,47 @@ impl<const D: usize> Drivers<D> {
     }
 
     /// Takes an effect's accelerations `share` at the held components over: zeroes them there
-    /// (the driver holds the component whatever acts on it, so the effect does no work on it
-    /// and is no part of its resultant) and adds m a_e to the owning set's absorbed force.
-    pub fn absorb(&mut self, share: &mut [Vector<D>], masses: &[f64]) {
+    /// (the driver holds the component whatever acts on it, so the effect moves it not at all
+    /// and is no part of its resultant), adds m a_e to the owning set's absorbed force, and
+    /// returns the effect's work on the held components over the kick `kick`,
+    /// Σ m a_e·v̄ Δt* with v̄ = ½(v^{n−½} + v_p) (module docs), which the set books as done
+    /// against it. Call after [`Self::prepare_step`] and the internal-force kick (`particles`
+    /// holds v^{n−½} + Δt* a^n and a^n).
+    pub fn absorb(&mut self, share: &mut [Vector<D>], particles: &Particles<D>, kick: f64) -> f64 {
+        let p = particles;
+        let mut held_work = 0.0;
         for h in &self.held {
+            let i = h.particle;
             for (c, &s) in h.owner.iter().enumerate() {
                 if s != FREE {
-                    let a = &mut share[h.particle][c];
-                    self.absorbed[s as usize][c] += masses[h.particle] * *a;
+                    let s = s as usize;
+                    let a = &mut share[i][c];
+                    let force = p.masses[i] * *a;
+                    let before = p.velocities[i][c] - kick * p.accelerations[i][c];
+                    let work = force * 0.5 * (before + self.current[s][c]) * kick;
+                    self.absorbed[s][c] += force;
+                    self.absorbed_work[s] += work;
+                    held_work += work;
                     *a = 0.0;
                 }
             }
         }
+        held_work
     }
 
     /// After the kick by Δt* = ½(`dt` + `next_dt`) of the step that ends at t^n: imposes the
     /// sets' velocities at time `at` (the mid-point time of the coming drift), stores the
     /// acceleration the held components actually had, (v_p − v^{n−½})/Δt*, so the velocity
     /// reported at t^n interpolates between the two half steps as for a free particle, and
-    /// books each set's impulse as its force and work (module docs).
+    /// books each set's force and work (module docs).
     pub fn drive(&mut self, particles: &mut Particles<D>, dt: f64, next_dt: f64, at: f64) {
         self.update_current(at);
         let kick = 0.5 * (dt + next_dt);
+        let forward = if kick > 0.0 {
+            0.5 * next_dt / kick
+        } else {
+            0.0
+        };
         self.forces.fill(Vector::zeros());
         self.pending.fill(0.0);
         let p = particles;
@@ -180,18 +211,22 @@ impl<const D: usize> Drivers<D> {
                 let work = impulse * 0.5 * (before + imposed);
                 self.work[s] += work;
                 p.velocities[i][c] = imposed;
+                self.pending[s] += work * forward;
                 if kick > 0.0 {
                     self.forces[s][c] += impulse / kick;
-                    self.pending[s] += work * (0.5 * next_dt / kick);
                     p.accelerations[i][c] = (imposed - before) / kick;
                 } else {
                     p.accelerations[i][c] = 0.0;
                 }
             }
         }
-        for (f, a) in self.forces.iter_mut().zip(&mut self.absorbed) {
+        // The effect forces taken over: out of the force, and their work out of the work.
+        for (s, (f, a)) in self.forces.iter_mut().zip(&mut self.absorbed).enumerate() {
             *f -= *a;
             *a = Vector::zeros();
+            let taken = std::mem::take(&mut self.absorbed_work[s]);
+            self.work[s] -= taken;
+            self.pending[s] -= taken * forward;
         }
     }
 

@@ -576,6 +576,9 @@ impl<const D: usize> Simulation<D> {
             }
             None => gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick),
         }
+        // Held components take their prescribed value at the mid-point of the coming drift.
+        let velocity_time = self.time + 0.5 * next_dt;
+        self.drivers.prepare_step(velocity_time);
         self.apply_effects(
             kick,
             if kick > 0.0 {
@@ -587,7 +590,6 @@ impl<const D: usize> Simulation<D> {
         // The kicked velocity is v^{n+½} of the coming drift, centred at t^n + ½Δt^{n+1}.
         // Held components take their prescribed value there (the kick they got is the
         // driver's impulse, booked as its force and work).
-        let velocity_time = self.time + 0.5 * next_dt;
         self.drivers
             .drive(&mut self.particles, dt, next_dt, velocity_time);
         if let Some(xsph) = &mut self.xsph {
@@ -1036,10 +1038,11 @@ impl<const D: usize> Simulation<D> {
             };
             booked.effect.accelerations(&ctx, share);
             // A prescribed component moves as imposed whatever acts on it: the effect's force
-            // there is taken by the driver (and counted in its reaction), does no work on the
-            // particles and is no part of the resultant (a fixed body pressed by a contact
-            // would otherwise book the m|a|²Δt² its discarded kick implies, every step).
-            self.drivers.absorb(share, &self.particles.masses);
+            // there is taken by the driver (and counted in its reaction) and is no part of the
+            // resultant. Its work there is still the effect's: booked below, and by the
+            // driver as done against it (a rigid indenter pressed into a block books the
+            // work of pressing it).
+            booked.held_work = self.drivers.absorb(share, &self.particles, kick);
             let p = &mut self.particles;
             let masses = &p.masses;
             p.accelerations
@@ -1085,7 +1088,7 @@ impl<const D: usize> Simulation<D> {
                     (work, Vector::<D>::zeros())
                 })
                 .collect_into_vec(&mut self.chunk_sums);
-            let work: f64 = self.chunk_sums.iter().map(|(w, _)| w).sum();
+            let work: f64 = self.chunk_sums.iter().map(|(w, _)| w).sum::<f64>() + booked.held_work;
             booked.energy -= work;
             // The kick spans t^n − ½Δt^n … t^n + ½Δt^{n+1}: the energy at t^n leaves out the
             // later part (trapezoidal rule, as the kinetic energy at t^n sees it).
@@ -1747,11 +1750,11 @@ fn build_effects<const D: usize>(
                 model,
                 body_force,
                 bodies,
-                drivers,
                 &particles.positions0[..n],
             )?),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     for wall in &model.effects.walls {
@@ -1789,12 +1792,14 @@ fn build_effects<const D: usize>(
             effect: Box::new(rigid),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
         if let Some(friction) = friction {
             effects.push(BookedEffect {
                 effect: Box::new(friction),
                 energy: 0.0,
                 pending: 0.0,
+                held_work: 0.0,
             });
         }
     }
@@ -1816,6 +1821,7 @@ fn build_effects<const D: usize>(
             )),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     if let Some(a) = &model.effects.artificial_stress {
@@ -1865,6 +1871,7 @@ fn build_effects<const D: usize>(
             )),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     if let Some(contact) = &model.effects.penalty_contact {
@@ -1880,6 +1887,7 @@ fn build_effects<const D: usize>(
             )?),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     if let Some(contact) = &model.effects.contact {
@@ -1892,6 +1900,7 @@ fn build_effects<const D: usize>(
             )?),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     if let Some(alpha) = model.effects.hourglass_control {
@@ -1917,6 +1926,7 @@ fn build_effects<const D: usize>(
             effect: Box::new(hourglass),
             energy: 0.0,
             pending: 0.0,
+            held_work: 0.0,
         });
     }
     Ok(effects)
@@ -1929,7 +1939,6 @@ fn build_body_force<const D: usize>(
     model: &Model<D>,
     body_force: &crate::model::BodyForceDescription<D>,
     bodies: &[BodyInfo],
-    drivers: &Drivers<D>,
     positions0: &[Vector<D>],
 ) -> Result<BodyForce<D>, SetupError> {
     let b = body_force.acceleration;
@@ -1975,11 +1984,9 @@ fn build_body_force<const D: usize>(
                 message,
             })?;
     }
-    let held = drivers.held_components();
     Ok(BodyForce::new(
         b,
         ranges,
-        held,
         positions0.to_vec(),
         body_force.ramp,
     ))

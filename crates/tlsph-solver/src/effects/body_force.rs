@@ -1,11 +1,12 @@
 //! Uniform body force per unit mass b (gravity; numerics.md §4.5, R 4.11: ρ0 ü = ∇·P + ρ0 b).
 //! Every real particle of the selected bodies gets the acceleration b. On the velocity
-//! components a boundary prescribes, the drive takes that force over (it becomes part of the
-//! boundary's reaction, `prescribed.rs`), so the body force does no work there. The force is conservative, so its energy column is the potential energy gained,
-//! −Σ m b·(x − x_start) over the free components, evaluated at the same instant as the
-//! kinetic energy (for a free fall leap-frog then closes the total to round-off, where a work
-//! integral of the staggered velocities would leave an O(Δt) boundary term).
-//!
+//! components a boundary prescribes, the driver takes that force over (it becomes part of the
+//! boundary's reaction, and the driver's work includes lifting the held particles against
+//! it, `prescribed.rs`). The force is conservative, so its energy column is the potential
+//! energy gained, −Σ m b·(x − x_start) over every particle of the selected bodies, held ones
+//! included, evaluated at the same instant as the kinetic energy (for a free fall leap-frog
+//! then closes the total to round-off, where a work integral of the staggered velocities
+//! would leave an O(Δt) boundary term).
 //!
 //! With a ramp b(t) = r(t/T) b the column is the work of the time-dependent force in the same
 //! form: E = −r(t) Π(t) + ∫₀ᵗ r'(s) Π(s) ds, Π = Σ m b·(x − x_start), whose rate is −Σ m b(t)·v.
@@ -27,9 +28,6 @@ pub struct BodyForce<const D: usize> {
     acceleration: Vector<D>,
     /// Global particle ranges of the bodies that feel it (disjoint).
     ranges: Vec<Range<usize>>,
-    /// Particles of those bodies with prescribed velocity components (global index, which
-    /// components), one entry per particle.
-    held: Vec<(usize, [bool; D])>,
     /// Position of every real particle at the start of the run: x = X + u stays continuous
     /// through a reference update, so the potential energy does too.
     start: Vec<Vector<D>>,
@@ -52,27 +50,19 @@ struct RampState {
 }
 
 impl<const D: usize> BodyForce<D> {
-    /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged); the
-    /// prescribed components `held` (ascending particle index, each particle once with its
-    /// merged mask) are left out of the potential energy; `start` holds the initial positions
-    /// of the real particles.
+    /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged);
+    /// `start` holds the initial positions of the real particles.
     pub(crate) fn new(
         acceleration: Vector<D>,
         mut ranges: Vec<Range<usize>>,
-        held: impl IntoIterator<Item = (usize, [bool; D])>,
         start: Vec<Vector<D>>,
         ramp: Option<VelocityRamp>,
     ) -> Self {
         ranges.sort_by_key(|r| r.start);
         ranges.dedup();
-        let held = held
-            .into_iter()
-            .filter(|(i, _)| ranges.iter().any(|r| r.contains(i)))
-            .collect();
         Self {
             acceleration,
             ranges,
-            held,
             start,
             potential: 0.0,
             ramp: ramp.map(|ramp| RampState {
@@ -118,17 +108,10 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
                         .sum::<f64>()
                 }));
         }
-        // Π = Σ m b·(x − x_start) over the free components, with the full b (the held
-        // components' share of `out` is taken over by their driver after this call).
-        let mut work: f64 = self.chunk_sums.iter().sum();
-        for &(i, components) in &self.held {
-            let moved = (p.positions0[i] - start[i]) + p.displacements[i];
-            for (c, held) in components.iter().enumerate() {
-                if *held {
-                    work -= p.masses[i] * b[c] * moved[c];
-                }
-            }
-        }
+        // Π = Σ m b·(x − x_start) with the full b, held components included (their share of
+        // `out` is taken over by their driver after this call, whose work then holds what it
+        // took to move them against b).
+        let work: f64 = self.chunk_sums.iter().sum();
         self.potential = match &mut self.ramp {
             None => -work,
             Some(state) => {

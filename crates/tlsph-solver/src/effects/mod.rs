@@ -117,6 +117,10 @@ pub(crate) struct BookedEffect<const D: usize> {
     /// The part of `energy` booked for the time after t^n (the forward half of the last
     /// kick), left out of the energy reported at t^n.
     pub pending: f64,
+    /// The work of this step's force on the prescribed components, which their drivers took
+    /// over (`Drivers::absorb`): booked here as the effect's, and by the drivers as done
+    /// against it, so each column is the work of its own force \[J\].
+    pub held_work: f64,
 }
 
 impl<const D: usize> Clone for BookedEffect<D> {
@@ -125,6 +129,7 @@ impl<const D: usize> Clone for BookedEffect<D> {
             effect: self.effect.clone_box(),
             energy: self.energy,
             pending: self.pending,
+            held_work: self.held_work,
         }
     }
 }
