@@ -474,17 +474,30 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         }
         bodies.push(body);
     }
-    if let Some((later, earlier, at, distance)) = first_overlap(&bodies) {
-        let fmt_at: Vec<String> = at.iter().map(|x| format!("{x}")).collect();
+    if let Some((later, earlier, how)) = first_overlap(&bodies) {
+        let fmt = |at: &Vector<D>| -> String {
+            let parts: Vec<String> = at.iter().map(|x| format!("{x}")).collect();
+            parts.join(", ")
+        };
+        let (a, b) = (&bodies[earlier].name, &bodies[later].name);
+        let what = match how {
+            Overlap::TooClose(at, distance) => format!(
+                "starts inside body `{a}`: its particle at [{}] is {distance:.3e} from one of `{a}`'s, less than half the smaller spacing",
+                fmt(&at)
+            ),
+            Overlap::Embedded(at, owner) if owner == later => format!(
+                "starts inside body `{a}`: the cell of its particle at [{}] (the cube of side `spacing` around it) lies within the cells of `{a}`'s particles",
+                fmt(&at)
+            ),
+            Overlap::Embedded(at, _) => format!(
+                "starts around body `{a}`: the cell of `{a}`'s particle at [{}] (the cube of side `spacing` around it) lies within the cells of `{b}`'s particles",
+                fmt(&at)
+            ),
+        };
         return Err(ctx.error(
             &file.body[later].name.span(),
-            &format!("body[{}]", bodies[later].name),
-            format!(
-                "starts inside body `{}`: its particle at [{}] is {distance:.3e} from one of `{}`'s, less than half the smaller spacing; bodies must not overlap (leave at least one spacing between their outer particle rows)",
-                bodies[earlier].name,
-                fmt_at.join(", "),
-                bodies[earlier].name
-            ),
+            &format!("body[{b}]"),
+            format!("{what}; bodies must not overlap (leave at least one spacing between their outer particle rows)"),
         ));
     }
     if bodies.is_empty() {
@@ -655,6 +668,27 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                     &plane.position.span(),
                     "symmetry_plane.position",
                     format!("body `{}` has particles on both sides of, or on, this plane; model only one side", b.name),
+                ));
+            }
+            // Closer than a quarter spacing, a particle would sit within half a spacing of
+            // its own image (the solver's `MIN_PLANE_DISTANCE` rule).
+            let limit = 0.25 * b.spacing;
+            if let Some(x) = b
+                .positions
+                .iter()
+                .find(|x| (x[axis] - position).abs() < limit)
+            {
+                let at: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
+                return Err(ctx.error(
+                    &plane.position.span(),
+                    "symmetry_plane.position",
+                    format!(
+                        "body `{}` has a particle at [{}], {:.3e} from this plane: less than a quarter of its spacing ({}), so within half a spacing of its own mirror image; put the particles next to the plane half a spacing from it (as `clip` and a box face on the plane do)",
+                        b.name,
+                        at.join(", "),
+                        (x[axis] - position).abs(),
+                        b.spacing
+                    ),
                 ));
             }
             match modelled_side {
@@ -2052,39 +2086,129 @@ fn build_probe<const D: usize>(
 
 /// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
 /// Index of a coordinate axis named "x", "y" or "z".
-/// The first pair of bodies that start inside each other: (later body, earlier body, the
-/// later body's particle, distance) for the first particle (in body then particle order)
-/// closer to a particle of an earlier body than half the smaller of the two spacings. One cell
-/// search over all particles, O(N).
+/// How two bodies were found to start inside each other.
+#[derive(Debug, Clone, Copy)]
+enum Overlap<const D: usize> {
+    /// A particle of the later body closer to one of the earlier body's than half the smaller
+    /// spacing (at, distance).
+    TooClose(Vector<D>, f64),
+    /// A particle whose cell (the cube of side `spacing` centred on it) lies entirely within
+    /// the cells of the other body's particles: one body is embedded in the other, whatever
+    /// the offset between their lattices (at, that particle's body).
+    Embedded(Vector<D>, usize),
+}
+
+/// A body's particles binned at half its spacing, with their bounding box grown by half a
+/// spacing: every point within a cell of one of its particles lies in the box.
+struct BinnedBody<'a, const D: usize> {
+    body: &'a BodyDescription<D>,
+    grid: tlsph_neighbours::CellGrid<D>,
+    lower: Vector<D>,
+    upper: Vector<D>,
+}
+
+impl<'a, const D: usize> BinnedBody<'a, D> {
+    fn new(body: &'a BodyDescription<D>) -> Option<Self> {
+        let half = 0.5 * body.spacing;
+        let grid = tlsph_neighbours::CellGrid::new(&body.positions, half).ok()?;
+        let (mut lower, mut upper) = (body.positions[0], body.positions[0]);
+        for x in &body.positions {
+            lower = lower.inf(x);
+            upper = upper.sup(x);
+        }
+        let pad = Vector::<D>::repeat(half);
+        Some(Self {
+            body,
+            grid,
+            lower: lower - pad,
+            upper: upper + pad,
+        })
+    }
+
+    fn may_hold(&self, x: &Vector<D>) -> bool {
+        (0..D).all(|k| x[k] >= self.lower[k] && x[k] <= self.upper[k])
+    }
+
+    /// Distance from `x` to the nearest particle closer than `limit` (≤ half the spacing).
+    fn nearest_within(&self, x: &Vector<D>, limit: f64) -> Option<f64> {
+        let mut nearest: Option<f64> = None;
+        if self.may_hold(x) {
+            self.grid.for_each_candidate_with_position(x, |_, y| {
+                let d = (x - y).norm();
+                if d < limit && nearest.is_none_or(|n| d < n) {
+                    nearest = Some(d);
+                }
+            });
+        }
+        nearest
+    }
+
+    /// Whether `x` lies inside the cell of one of the particles, the cube of side `spacing`
+    /// centred on it (the grid's cell is half a spacing, so its neighbourhood holds them all).
+    fn covers(&self, x: &Vector<D>) -> bool {
+        let half = 0.5 * self.body.spacing;
+        let mut inside = false;
+        if self.may_hold(x) {
+            self.grid.for_each_candidate_with_position(x, |_, y| {
+                inside |= (x - y).amax() < half;
+            });
+        }
+        inside
+    }
+
+    /// Whether the cell of a particle at `x` with `spacing` lies within the union of this
+    /// body's cells: each corner of it, moved inward by 1e-6 of the spacing (so that cells
+    /// meeting face to face do not count), lies in one of them. Lattice cells tile without
+    /// gaps, so the corners decide.
+    fn embeds(&self, x: &Vector<D>, spacing: f64) -> bool {
+        let reach = 0.5 * spacing * (1.0 - 1e-6);
+        (0..1usize << D).all(|corner| {
+            let c = Vector::<D>::from_fn(|k, _| {
+                if corner >> k & 1 == 1 {
+                    x[k] + reach
+                } else {
+                    x[k] - reach
+                }
+            });
+            self.covers(&c)
+        })
+    }
+}
+
+/// The first pair of bodies that start inside each other: (later body, earlier body, how),
+/// for the first pair in body order. Within a pair, the later body's particles are tested
+/// first: closer to an earlier body's particle than half the smaller spacing, or their cell
+/// embedded in the earlier body's cells; then the earlier body's cells embedded in the later
+/// one's (a small body inside a coarser one, or a coarse one around a fine one). Each body is
+/// binned at half its own spacing, so a query visits a few particles whatever the ratio of
+/// the spacings; particles outside the other body's bounding box are skipped.
 fn first_overlap<const D: usize>(
     bodies: &[BodyDescription<D>],
-) -> Option<(usize, usize, Vector<D>, f64)> {
+) -> Option<(usize, usize, Overlap<D>)> {
     if bodies.len() < 2 {
         return None;
     }
-    let points: Vec<Vector<D>> = bodies.iter().flat_map(|b| b.positions.clone()).collect();
-    let mut owner = Vec::with_capacity(points.len());
-    for (k, b) in bodies.iter().enumerate() {
-        owner.extend(std::iter::repeat_n(k, b.positions.len()));
-    }
-    let largest = bodies.iter().map(|b| b.spacing).fold(0.0, f64::max);
-    // Coordinates and spacings are checked finite by now; a failure to bin means nothing to
-    // report here (the solver names the bad value).
-    let grid = tlsph_neighbours::CellGrid::new(&points, 0.5 * largest).ok()?;
-    for (i, x) in points.iter().enumerate() {
-        let mut found: Option<(usize, f64)> = None;
-        grid.for_each_candidate_with_position(x, |j, y| {
-            let a = owner[j as usize];
-            if a < owner[i] {
-                let d = (x - y).norm();
-                let limit = 0.5 * bodies[a].spacing.min(bodies[owner[i]].spacing);
-                if d < limit && found.is_none_or(|(b, _)| a < b) {
-                    found = Some((a, d));
+    // Coordinates and spacings are checked finite by now; a body that cannot be binned means
+    // nothing to report here (the solver names the bad value).
+    let binned: Vec<Option<BinnedBody<'_, D>>> = bodies.iter().map(BinnedBody::new).collect();
+    for later in 1..bodies.len() {
+        let Some(b) = &binned[later] else { continue };
+        for (earlier, a) in binned[..later].iter().enumerate() {
+            let Some(a) = a else { continue };
+            let limit = 0.5 * a.body.spacing.min(b.body.spacing);
+            for x in &b.body.positions {
+                if let Some(d) = a.nearest_within(x, limit) {
+                    return Some((later, earlier, Overlap::TooClose(*x, d)));
+                }
+                if a.embeds(x, b.body.spacing) {
+                    return Some((later, earlier, Overlap::Embedded(*x, later)));
                 }
             }
-        });
-        if let Some((a, d)) = found {
-            return Some((owner[i], a, *x, d));
+            for y in &a.body.positions {
+                if b.embeds(y, a.body.spacing) {
+                    return Some((later, earlier, Overlap::Embedded(*y, earlier)));
+                }
+            }
         }
     }
     None

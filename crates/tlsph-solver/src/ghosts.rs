@@ -174,12 +174,18 @@ pub(crate) fn reflections<const D: usize>(planes: &[SymmetryPlane]) -> PlaneRefl
     PlaneReflections::new(planes.iter().map(|p| (p.axis, p.position))).unwrap_or_default()
 }
 
+/// Least distance of a particle from a symmetry plane, in spacings: closer, it would be
+/// within half a spacing of its own mirror image, as two particles of one lattice never are
+/// (the rule for two bodies that start inside each other).
+pub(crate) const MIN_PLANE_DISTANCE: f64 = 0.25;
+
 /// Input check of a symmetry model: at most 8 planes, each existing in `D` dimensions, and
-/// every body (name, particles at setup) strictly on one side of each plane, the same side for
-/// all bodies (a body on the far side would meet the images of the others, not the
-/// modelled half). The error names the first body off its side.
+/// every body (name, particles at setup, spacing) strictly on one side of each plane, the same
+/// side for all bodies (a body on the far side would meet the images of the others, not the
+/// modelled half), no particle closer to a plane than a quarter of its spacing (it would sit
+/// within half a spacing of its own image). The error names the first body at fault.
 pub(crate) fn check_planes<'a, const D: usize>(
-    bodies: impl IntoIterator<Item = (&'a str, &'a [Vector<D>])>,
+    bodies: impl IntoIterator<Item = (&'a str, &'a [Vector<D>], f64)>,
     planes: &[SymmetryPlane],
 ) -> Result<(), SetupError> {
     if planes.is_empty() {
@@ -197,8 +203,8 @@ pub(crate) fn check_planes<'a, const D: usize>(
         }
     }
     let mut first: Option<(&str, Vec<f64>)> = None;
-    for (name, positions) in bodies {
-        check_plane_sides(name, positions, planes)?;
+    for (name, positions, spacing) in bodies {
+        check_plane_sides(name, positions, spacing, planes)?;
         let Some(x) = positions.first() else {
             continue;
         };
@@ -236,6 +242,7 @@ pub(crate) fn check_planes<'a, const D: usize>(
 fn check_plane_sides<const D: usize>(
     name: &str,
     positions: &[Vector<D>],
+    spacing: f64,
     planes: &[SymmetryPlane],
 ) -> Result<(), SetupError> {
     for plane in planes {
@@ -261,6 +268,22 @@ fn check_plane_sides<const D: usize>(
                     plane.axis,
                     plane.position,
                     positions[k].as_slice()
+                ),
+            });
+        }
+        let limit = MIN_PLANE_DISTANCE * spacing;
+        if let Some(k) = positions
+            .iter()
+            .position(|x| (x[plane.axis] - plane.position).abs() < limit)
+        {
+            return Err(SetupError::InvalidBody {
+                body: name.to_string(),
+                message: format!(
+                    "particle {k} at {:?} is {:.3e} from the symmetry plane x[{}] = {}, less than a quarter of the spacing {spacing}: it would sit within half a spacing of its own mirror image (a lattice puts the particles next to the plane half a spacing from it)",
+                    positions[k].as_slice(),
+                    (positions[k][plane.axis] - plane.position).abs(),
+                    plane.axis,
+                    plane.position
                 ),
             });
         }

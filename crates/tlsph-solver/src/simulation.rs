@@ -210,6 +210,7 @@ impl<const D: usize> Simulation<D> {
                 (
                     info.name.as_str(),
                     &particles.positions0[info.range.clone()],
+                    info.spacing,
                 )
             }),
             &model.effects.symmetry_planes,

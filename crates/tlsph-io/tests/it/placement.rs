@@ -1,6 +1,7 @@
-//! Where bodies start: two bodies that start inside each other, a body that starts behind a
-//! rigid wall, or bodies on both sides of a symmetry plane are refused by `tlsph check` at
-//! their line, naming the bodies (and a particle).
+//! Where bodies start: two bodies that start inside each other (too close, or one embedded in
+//! the other on any lattice), a body that starts behind a rigid wall, bodies on both sides of a
+//! symmetry plane, or a particle closer to a plane than a quarter spacing are refused by
+//! `tlsph check` at their line, naming the bodies (and a particle).
 
 use super::{error_of, line_of};
 use tlsph_io::parse_scene;
@@ -62,6 +63,112 @@ fn bodies_that_start_inside_each_other_are_refused_at_the_later_body() {
 }
 
 #[test]
+fn a_body_embedded_in_another_on_an_offset_lattice_is_refused() {
+    // The right block moved into the left one with its lattice offset by half a spacing: no
+    // pair is closer than half a spacing (the rule above passes it), but every cell of the
+    // right block's first column lies within the left block's cells (a first-user review
+    // found such scenes accepted, starting with contact energy).
+    for (right_box, at) in [
+        // Half a spacing off along x: the nearest pair is exactly half a spacing apart.
+        (
+            "min = [5.5e-3, 0.0], max = [20.0e-3, 10.0e-3]",
+            "at [0.006, 0.0005]",
+        ),
+        // Half off along x and y: 0.71 spacing apart.
+        (
+            "min = [5.5e-3, 0.5e-3], max = [20.0e-3, 9.5e-3]",
+            "at [0.006, 0.001]",
+        ),
+    ] {
+        let text = TWO_BLOCKS.replace("min = [GAP, 0.0], max = [20.0e-3, 10.0e-3]", right_box);
+        let e = error_of(&text);
+        assert_eq!(e.field, "body[right]", "{right_box}: {e}");
+        assert_eq!(e.line, Some(line_of(&text, "name = \"right\"")), "{e}");
+        assert!(
+            e.message
+                .contains("starts inside body `left`: the cell of its particle")
+                && e.message.contains(at)
+                && e.message
+                    .contains("lies within the cells of `left`'s particles"),
+            "{right_box}: {e}"
+        );
+    }
+}
+
+/// A coarse 2D plate (spacing 1 mm, 10 × 10 mm) and a fine disc (spacing 0.1 mm) of radius
+/// 0.3 mm about `CENTRE`, in the order given by `FIRST` and `SECOND`.
+const PLATE_AND_DISC: &str = r#"
+[simulation]
+dimension = 2
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = 1.0e-6
+
+[[material]]
+name = "steel"
+model = "linear-elastic"
+density = 7850.0
+youngs_modulus = 200.0e9
+poisson_ratio = 0.3
+
+FIRST
+
+SECOND
+"#;
+
+const PLATE: &str = r#"[[body]]
+name = "plate"
+material = "steel"
+spacing = 1.0e-3
+box = { min = [0.0, 0.0], max = [10.0e-3, 10.0e-3] }"#;
+
+const DISC: &str = r#"[[body]]
+name = "disc"
+material = "steel"
+spacing = 0.1e-3
+disc = { centre = CENTRE, radius = 0.3e-3 }"#;
+
+#[test]
+fn a_fine_body_inside_a_coarse_one_is_refused_whichever_is_declared_first() {
+    // The disc sits between four plate particles (0.42 mm from each, more than half of either
+    // spacing): only the cells show that it is inside the plate.
+    let disc = DISC.replace("CENTRE", "[5.0e-3, 5.0e-3]");
+    let text = PLATE_AND_DISC
+        .replace("FIRST", PLATE)
+        .replace("SECOND", &disc);
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[disc]", "{e}");
+    assert!(
+        e.message
+            .contains("starts inside body `plate`: the cell of its particle"),
+        "{e}"
+    );
+    // Declared first, the disc is the earlier body: the plate is named, as lying around it.
+    let text = PLATE_AND_DISC
+        .replace("FIRST", &disc)
+        .replace("SECOND", PLATE);
+    let e = error_of(&text);
+    assert_eq!(e.field, "body[plate]", "{e}");
+    assert_eq!(e.line, Some(line_of(&text, "name = \"plate\"")), "{e}");
+    assert!(
+        e.message
+            .contains("starts around body `disc`: the cell of `disc`'s particle")
+            && e.message
+                .contains("lies within the cells of `plate`'s particles"),
+        "{e}"
+    );
+    // Resting on the plate (tangent to its top face) or beside it, the disc is accepted.
+    for centre in ["[5.0e-3, 10.3e-3]", "[10.3e-3, 5.0e-3]"] {
+        let text = PLATE_AND_DISC
+            .replace("FIRST", PLATE)
+            .replace("SECOND", &DISC.replace("CENTRE", centre));
+        parse_scene(&text, "plate.toml").unwrap();
+    }
+}
+
+#[test]
 fn a_body_that_starts_behind_a_wall_is_refused_at_the_wall() {
     let ok = TWO_BLOCKS.replace("GAP", "10.0e-3");
     // The floor at y = 0 touches both blocks' bottom faces; raised to y = 2 mm it has the
@@ -110,4 +217,26 @@ fn a_second_plane_normal_to_the_same_axis_is_refused_at_its_axis() {
     assert_eq!(e.field, "symmetry_plane.axis", "{e}");
     assert_eq!(e.line, Some(line_of(&text, "# again")), "{e}");
     assert!(e.message.contains("one symmetry plane per axis"), "{e}");
+}
+
+#[test]
+fn a_particle_closer_to_a_plane_than_a_quarter_spacing_is_refused_at_the_plane() {
+    // The left block's first column lies at x = 0.5 mm; a plane at x = 0.3 mm passes 0.2
+    // spacing from it (its image would be 0.4 spacing away): refused, naming the particle.
+    // At 0.25 mm (a quarter spacing) it is accepted, as is the usual plane on the face.
+    let blocks = TWO_BLOCKS.replace("GAP", "10.5e-3");
+    let plane = |x: &str| format!("{blocks}\n[[symmetry_plane]]\naxis = \"x\"\nposition = {x}\n");
+    let text = plane("0.3e-3");
+    let e = error_of(&text);
+    assert_eq!(e.field, "symmetry_plane.position", "{e}");
+    assert_eq!(e.line, Some(line_of(&text, "position = 0.3e-3")), "{e}");
+    assert!(
+        e.message
+            .contains("body `left` has a particle at [0.0005, 0.0005], 2.000e-4 from this plane")
+            && e.message.contains("less than a quarter of its spacing"),
+        "{e}"
+    );
+    for x in ["0.25e-3", "0.0"] {
+        parse_scene(&plane(x), "blocks.toml").unwrap();
+    }
 }

@@ -213,6 +213,46 @@ fn bodies_on_both_sides_of_a_symmetry_plane_are_rejected() {
 }
 
 #[test]
+fn a_particle_closer_to_a_plane_than_a_quarter_spacing_is_rejected() {
+    // The lattice's first column at x = offset from the plane x = 0: at half a spacing (as a
+    // lattice cut by the plane puts it) and down to a quarter the model is accepted; closer,
+    // the particle would sit within half a spacing of its own image (a first-user review ran
+    // a column 0.05 spacing from the plane without comment).
+    let dx = 0.05;
+    let block = |offset: f64| -> Vec<Vector<2>> {
+        super::lattice([4, 4], dx)
+            .iter()
+            .map(|x| x + Vector::<2>::new(offset * dx - 0.5 * dx, 0.0))
+            .collect()
+    };
+    let with_plane = |offset: f64| {
+        let mut m = model(
+            block(offset),
+            dx,
+            |_| Vector::<2>::zeros(),
+            Setup::default(),
+        );
+        m.effects.symmetry_planes = vec![SymmetryPlane {
+            axis: 0,
+            position: 0.0,
+        }];
+        Simulation::new(m)
+    };
+    for offset in [0.5, 0.25] {
+        with_plane(offset).unwrap();
+    }
+    for offset in [0.2, 0.05] {
+        let err = with_plane(offset).unwrap_err().to_string();
+        assert!(
+            err.contains("particle 0 at")
+                && err.contains("less than a quarter of the spacing")
+                && err.contains("its own mirror image"),
+            "offset {offset}: {err}"
+        );
+    }
+}
+
+#[test]
 fn two_planes_normal_to_one_axis_are_rejected() {
     // A plane declared twice (or two parallel planes) would mirror each other's images without
     // end; before this check the bond builder panicked on it.
