@@ -475,23 +475,19 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         bodies.push(body);
     }
     if let Some((later, earlier, how)) = first_overlap(&bodies) {
-        let fmt = |at: &Vector<D>| -> String {
-            let parts: Vec<String> = at.iter().map(|x| format!("{x}")).collect();
-            parts.join(", ")
-        };
         let (a, b) = (&bodies[earlier].name, &bodies[later].name);
         let what = match how {
             Overlap::TooClose(at, distance) => format!(
                 "starts inside body `{a}`: its particle at [{}] is {distance:.3e} from one of `{a}`'s, less than half the smaller spacing",
-                fmt(&at)
+                point_text(&at)
             ),
             Overlap::Embedded(at, owner) if owner == later => format!(
                 "starts inside body `{a}`: the cell of its particle at [{}] (the cube of side `spacing` around it) lies within the cells of `{a}`'s particles",
-                fmt(&at)
+                point_text(&at)
             ),
             Overlap::Embedded(at, _) => format!(
                 "starts around body `{a}`: the cell of `{a}`'s particle at [{}] (the cube of side `spacing` around it) lies within the cells of `{b}`'s particles",
-                fmt(&at)
+                point_text(&at)
             ),
         };
         return Err(ctx.error(
@@ -604,14 +600,13 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 .map(|x| (x, (x - point).dot(&unit)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
-                let fmt_at: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
                 return Err(ctx.error(
                     &w.point.span(),
                     &format!("wall[{name}].point"),
                     format!(
                         "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the plane (particles must start on the side the normal points to)",
                         body.name,
-                        fmt_at.join(", "),
+                        point_text(x),
                         -d
                     ),
                 ));
@@ -671,21 +666,20 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 ));
             }
             // Closer than a quarter spacing, a particle would sit within half a spacing of
-            // its own image (the solver's `MIN_PLANE_DISTANCE` rule).
-            let limit = 0.25 * b.spacing;
+            // its own image (the solver's rule, checked here to name the line).
+            let limit = tlsph_solver::MIN_PLANE_DISTANCE * b.spacing;
             if let Some(x) = b
                 .positions
                 .iter()
                 .find(|x| (x[axis] - position).abs() < limit)
             {
-                let at: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
                 return Err(ctx.error(
                     &plane.position.span(),
                     "symmetry_plane.position",
                     format!(
                         "body `{}` has a particle at [{}], {:.3e} from this plane: less than a quarter of its spacing ({}), so within half a spacing of its own mirror image; put the particles next to the plane half a spacing from it (as `clip` and a box face on the plane do)",
                         b.name,
-                        at.join(", "),
+                        point_text(x),
                         (x[axis] - position).abs(),
                         b.spacing
                     ),
@@ -2084,8 +2078,6 @@ fn build_probe<const D: usize>(
     })
 }
 
-/// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
-/// Index of a coordinate axis named "x", "y" or "z".
 /// How two bodies were found to start inside each other.
 #[derive(Debug, Clone, Copy)]
 enum Overlap<const D: usize> {
@@ -2214,10 +2206,18 @@ fn first_overlap<const D: usize>(
     None
 }
 
+/// A point as its coordinates separated by commas, for messages ("0.0005, 0.0005").
+fn point_text<const D: usize>(x: &Vector<D>) -> String {
+    let parts: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
+    parts.join(", ")
+}
+
+/// Index of a coordinate axis named "x", "y" or "z".
 fn axis_index(name: &str) -> Option<usize> {
     ["x", "y", "z"].iter().position(|a| *a == name)
 }
 
+/// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
 fn is_safe_file_stem(name: &str) -> bool {
     !name.is_empty()
         && !name.starts_with('.')

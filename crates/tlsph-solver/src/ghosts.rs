@@ -174,10 +174,10 @@ pub(crate) fn reflections<const D: usize>(planes: &[SymmetryPlane]) -> PlaneRefl
     PlaneReflections::new(planes.iter().map(|p| (p.axis, p.position))).unwrap_or_default()
 }
 
-/// Least distance of a particle from a symmetry plane, in spacings: closer, it would be
-/// within half a spacing of its own mirror image, as two particles of one lattice never are
-/// (the rule for two bodies that start inside each other).
-pub(crate) const MIN_PLANE_DISTANCE: f64 = 0.25;
+/// Least distance of a particle from a symmetry plane, in spacings (numerics.md §13.1
+/// ghosts): closer, it would be within half a spacing of its own mirror image, as two
+/// particles of one lattice never are (the rule for two bodies that start inside each other).
+pub const MIN_PLANE_DISTANCE: f64 = 0.25;
 
 /// Input check of a symmetry model: at most 8 planes, each existing in `D` dimensions, and
 /// every body (name, particles at setup, spacing) strictly on one side of each plane, the same

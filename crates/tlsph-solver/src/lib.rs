@@ -31,6 +31,7 @@ pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
 pub use error::{SetupError, StepError};
 pub use fields::ParticleField;
+pub use ghosts::MIN_PLANE_DISTANCE;
 pub use model::{
     ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
     ContactDescription, DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic,

@@ -181,12 +181,12 @@ impl<const D: usize> Drivers<D> {
     }
 
     /// After the kick by Δt* = ½(`dt` + `next_dt`) of the step that ends at t^n: imposes the
-    /// sets' velocities at time `at` (the mid-point time of the coming drift), stores the
+    /// sets' velocities taken by [`Self::prepare_step`] (at the mid-point time of the coming
+    /// drift), stores the
     /// acceleration the held components actually had, (v_p − v^{n−½})/Δt*, so the velocity
     /// reported at t^n interpolates between the two half steps as for a free particle, and
     /// books each set's force and work (module docs).
-    pub fn drive(&mut self, particles: &mut Particles<D>, dt: f64, next_dt: f64, at: f64) {
-        self.update_current(at);
+    pub fn drive(&mut self, particles: &mut Particles<D>, dt: f64, next_dt: f64) {
         let kick = 0.5 * (dt + next_dt);
         let forward = if kick > 0.0 {
             0.5 * next_dt / kick

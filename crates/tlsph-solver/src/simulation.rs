@@ -591,8 +591,7 @@ impl<const D: usize> Simulation<D> {
         // The kicked velocity is v^{n+½} of the coming drift, centred at t^n + ½Δt^{n+1}.
         // Held components take their prescribed value there (the kick they got is the
         // driver's impulse, booked as its force and work).
-        self.drivers
-            .drive(&mut self.particles, dt, next_dt, velocity_time);
+        self.drivers.drive(&mut self.particles, dt, next_dt);
         if let Some(xsph) = &mut self.xsph {
             xsph.update(
                 &self.bonds,
@@ -1746,17 +1745,12 @@ fn build_effects<const D: usize>(
         (0..n).map(|i| f(&bodies[body_of(i)])).collect()
     };
     if let Some(body_force) = &model.effects.body_force {
-        effects.push(BookedEffect {
-            effect: Box::new(build_body_force(
-                model,
-                body_force,
-                bodies,
-                &particles.positions0[..n],
-            )?),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(build_body_force(
+            model,
+            body_force,
+            bodies,
+            &particles.positions0[..n],
+        )?)));
     }
     for wall in &model.effects.walls {
         if !(wall.normal.norm() > 0.0
@@ -1789,19 +1783,9 @@ fn build_effects<const D: usize>(
         let rigid = RigidWall::new(&wall.name, wall.point, wall.normal, &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
         let friction = (wall.friction > 0.0).then(|| rigid.friction(wall.friction));
-        effects.push(BookedEffect {
-            effect: Box::new(rigid),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(rigid)));
         if let Some(friction) = friction {
-            effects.push(BookedEffect {
-                effect: Box::new(friction),
-                energy: 0.0,
-                pending: 0.0,
-                held_work: 0.0,
-            });
+            effects.push(BookedEffect::new(Box::new(friction)));
         }
     }
     if let Some((alpha, beta)) = model.effects.pairwise_viscosity {
@@ -1811,19 +1795,14 @@ fn build_effects<const D: usize>(
                 message: format!("alpha and beta must be finite and ≥ 0, got {alpha}, {beta}"),
             });
         }
-        effects.push(BookedEffect {
-            effect: Box::new(MonaghanViscosity::new(
-                alpha,
-                beta,
-                kernels.to_vec(),
-                body_indices(bodies, n),
-                bodies.iter().map(|b| b.density0).collect(),
-                bodies.iter().map(|b| b.sound_speed0).collect(),
-            )),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(MonaghanViscosity::new(
+            alpha,
+            beta,
+            kernels.to_vec(),
+            body_indices(bodies, n),
+            bodies.iter().map(|b| b.density0).collect(),
+            bodies.iter().map(|b| b.sound_speed0).collect(),
+        ))));
     }
     if let Some(a) = &model.effects.artificial_stress {
         if !(a.epsilon.is_finite() && a.epsilon > 0.0 && a.exponent.is_finite() && a.exponent > 0.0)
@@ -1857,23 +1836,18 @@ fn build_effects<const D: usize>(
         let feels: Vec<bool> = (0..bodies.len())
             .map(|b| (0..bodies.len()).any(|c| carries[c] && group(c) == group(b)))
             .collect();
-        effects.push(BookedEffect {
-            effect: Box::new(MonaghanArtificialStress::new(
-                a.epsilon,
-                a.exponent,
-                carries,
-                feels,
-                body_indices(bodies, n),
-                bodies
-                    .iter()
-                    .zip(kernels)
-                    .map(|(b, k)| k.value(b.spacing))
-                    .collect(),
-            )),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(MonaghanArtificialStress::new(
+            a.epsilon,
+            a.exponent,
+            carries,
+            feels,
+            body_indices(bodies, n),
+            bodies
+                .iter()
+                .zip(kernels)
+                .map(|(b, k)| k.value(b.spacing))
+                .collect(),
+        ))));
     }
     if let Some(contact) = &model.effects.penalty_contact {
         if model.effects.contact.is_some() {
@@ -1882,27 +1856,17 @@ fn build_effects<const D: usize>(
                 message: "one contact law per run: both the potential and the penalty contact are declared".into(),
             });
         }
-        effects.push(BookedEffect {
-            effect: Box::new(build_penalty_contact(
-                model, contact, bodies, kernels, drivers,
-            )?),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(build_penalty_contact(
+            model, contact, bodies, kernels, drivers,
+        )?)));
     }
     if let Some(contact) = &model.effects.contact {
-        effects.push(BookedEffect {
-            effect: Box::new(build_contact(
-                model,
-                contact,
-                bodies,
-                &particles.positions0[..n],
-            )?),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(build_contact(
+            model,
+            contact,
+            bodies,
+            &particles.positions0[..n],
+        )?)));
     }
     if let Some(alpha) = model.effects.hourglass_control {
         if !(alpha.is_finite() && alpha > 0.0) {
@@ -1923,12 +1887,7 @@ fn build_effects<const D: usize>(
             particles,
             bonds,
         );
-        effects.push(BookedEffect {
-            effect: Box::new(hourglass),
-            energy: 0.0,
-            pending: 0.0,
-            held_work: 0.0,
-        });
+        effects.push(BookedEffect::new(Box::new(hourglass)));
     }
     Ok(effects)
 }

@@ -95,29 +95,14 @@ fn a_body_embedded_in_another_on_an_offset_lattice_is_refused() {
     }
 }
 
+/// A scene of TWO_BLOCKS' simulation and material with the bodies `first` and `second`.
+fn two_bodies(first: &str, second: &str) -> String {
+    let header = &TWO_BLOCKS[..TWO_BLOCKS.find("[[body]]").expect("a body")];
+    format!("{header}{first}\n\n{second}\n")
+}
+
 /// A coarse 2D plate (spacing 1 mm, 10 × 10 mm) and a fine disc (spacing 0.1 mm) of radius
-/// 0.3 mm about `CENTRE`, in the order given by `FIRST` and `SECOND`.
-const PLATE_AND_DISC: &str = r#"
-[simulation]
-dimension = 2
-formulation = "total-lagrangian-corrected"
-kernel = "cubic-spline"
-smoothing_factor = 1.2
-cfl = 0.3
-end_time = 1.0e-6
-
-[[material]]
-name = "steel"
-model = "linear-elastic"
-density = 7850.0
-youngs_modulus = 200.0e9
-poisson_ratio = 0.3
-
-FIRST
-
-SECOND
-"#;
-
+/// 0.3 mm about `CENTRE`.
 const PLATE: &str = r#"[[body]]
 name = "plate"
 material = "steel"
@@ -135,9 +120,7 @@ fn a_fine_body_inside_a_coarse_one_is_refused_whichever_is_declared_first() {
     // The disc sits between four plate particles (0.42 mm from each, more than half of either
     // spacing): only the cells show that it is inside the plate.
     let disc = DISC.replace("CENTRE", "[5.0e-3, 5.0e-3]");
-    let text = PLATE_AND_DISC
-        .replace("FIRST", PLATE)
-        .replace("SECOND", &disc);
+    let text = two_bodies(PLATE, &disc);
     let e = error_of(&text);
     assert_eq!(e.field, "body[disc]", "{e}");
     assert!(
@@ -146,9 +129,7 @@ fn a_fine_body_inside_a_coarse_one_is_refused_whichever_is_declared_first() {
         "{e}"
     );
     // Declared first, the disc is the earlier body: the plate is named, as lying around it.
-    let text = PLATE_AND_DISC
-        .replace("FIRST", &disc)
-        .replace("SECOND", PLATE);
+    let text = two_bodies(&disc, PLATE);
     let e = error_of(&text);
     assert_eq!(e.field, "body[plate]", "{e}");
     assert_eq!(e.line, Some(line_of(&text, "name = \"plate\"")), "{e}");
@@ -161,9 +142,7 @@ fn a_fine_body_inside_a_coarse_one_is_refused_whichever_is_declared_first() {
     );
     // Resting on the plate (tangent to its top face) or beside it, the disc is accepted.
     for centre in ["[5.0e-3, 10.3e-3]", "[10.3e-3, 5.0e-3]"] {
-        let text = PLATE_AND_DISC
-            .replace("FIRST", PLATE)
-            .replace("SECOND", &DISC.replace("CENTRE", centre));
+        let text = two_bodies(PLATE, &DISC.replace("CENTRE", centre));
         parse_scene(&text, "plate.toml").unwrap();
     }
 }

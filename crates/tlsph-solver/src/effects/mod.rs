@@ -123,6 +123,18 @@ pub(crate) struct BookedEffect<const D: usize> {
     pub held_work: f64,
 }
 
+impl<const D: usize> BookedEffect<D> {
+    /// `effect` with nothing booked yet.
+    pub fn new(effect: Box<dyn Effect<D>>) -> Self {
+        Self {
+            effect,
+            energy: 0.0,
+            pending: 0.0,
+            held_work: 0.0,
+        }
+    }
+}
+
 impl<const D: usize> Clone for BookedEffect<D> {
     fn clone(&self) -> Self {
         Self {

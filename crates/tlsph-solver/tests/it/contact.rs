@@ -55,7 +55,8 @@ pub(super) fn config(formulation: Formulation, end_time: f64) -> SimulationConfi
     }
 }
 
-fn contact(scale: f64) -> Option<ContactDescription> {
+/// The potential law with `scale` and exponent 4, between every pair of bodies.
+pub(super) fn contact(scale: f64) -> Option<ContactDescription> {
     Some(ContactDescription {
         scale,
         exponent: 4.0,

@@ -10,7 +10,8 @@ use tlsph_solver::{
     PenaltyContactDescription, SetupError, Simulation,
 };
 
-fn penalty(friction: f64) -> Option<PenaltyContactDescription> {
+/// Fuller's penalty law (stiffness and range factors 1) with friction coefficient `friction`.
+pub(super) fn penalty(friction: f64) -> Option<PenaltyContactDescription> {
     Some(PenaltyContactDescription {
         stiffness: 1.0,
         range: 1.0,

@@ -1,12 +1,13 @@
 //! Prescribed velocities (`[[boundary]]`): the work the drivers do is booked so the energy
 //! closes for driven scenes, and each set reports the force it exerts on its particles.
 
-use super::contact::{body, config, materials};
+use super::contact::{body, config, contact, materials};
+use super::penalty_contact::penalty;
 use super::{clamp_and_pull, lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    BodyForceDescription, BoundaryDescription, ContactDescription, EffectsDescription, Formulation,
-    Model, PenaltyContactDescription, RampShape, Simulation, VelocityRamp,
+    BodyForceDescription, BoundaryDescription, EffectsDescription, Formulation, Model, RampShape,
+    Simulation, VelocityRamp,
 };
 
 /// A 2D block of 12 × 12 particles (side 0.6) held at its bottom row (y fixed, x free) and
@@ -334,23 +335,14 @@ fn a_rigidly_driven_indenter_books_the_work_of_pressing_it_and_the_energy_closes
             (
                 "potential",
                 EffectsDescription {
-                    contact: Some(ContactDescription {
-                        scale: 0.5,
-                        exponent: 4.0,
-                        pairs: None,
-                    }),
+                    contact: contact(0.5),
                     ..Default::default()
                 },
             ),
             (
                 "penalty, mu 0.3",
                 EffectsDescription {
-                    penalty_contact: Some(PenaltyContactDescription {
-                        stiffness: 1.0,
-                        range: 1.0,
-                        friction: 0.3,
-                        pairs: None,
-                    }),
+                    penalty_contact: penalty(0.3),
                     ..Default::default()
                 },
             ),
