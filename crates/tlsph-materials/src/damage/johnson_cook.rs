@@ -36,11 +36,21 @@ pub struct JohnsonCookFailure {
 
 impl JohnsonCookFailure {
     /// Builds the model from D1 … D5 (dimensionless); each must be finite (errors name `d1` …
-    /// `d5`). Negative values are allowed (D3 is usually negative).
+    /// `d5`). Negative values are allowed (D3 is usually negative, D1 is for some steels and
+    /// iron), but the failure strain at zero triaxiality, reference rate and room temperature,
+    /// D1 + D2, must be positive (error names `d`): otherwise every plastic increment fails the
+    /// particle at the floor [`MIN_STRAIN_TO_FAILURE`], a fit that cannot be meant.
     pub fn new(d1: f64, d2: f64, d3: f64, d4: f64, d5: f64) -> Result<Self, MaterialError> {
         let d = [d1, d2, d3, d4, d5];
         for (name, value) in ["d1", "d2", "d3", "d4", "d5"].into_iter().zip(d) {
             finite(name, value)?;
+        }
+        if d1 + d2 <= 0.0 {
+            return Err(MaterialError {
+                parameter: "d",
+                value: d1 + d2,
+                expected: "positive as D1 + D2, the failure strain at zero triaxiality, reference rate and room temperature",
+            });
         }
         Ok(Self { d })
     }

@@ -30,6 +30,12 @@ impl LinearEos {
         self.bulk_modulus * mu
     }
 
+    /// (∂p/∂μ, ∂p/∂E_v) = (K, 0) (see [`super::EquationOfState::isentropic_bulk_modulus`]).
+    #[inline]
+    pub fn pressure_derivatives(&self, _mu: f64, _energy_per_reference_volume: f64) -> (f64, f64) {
+        (self.bulk_modulus, 0.0)
+    }
+
     /// K \[Pa\] (numerics.md §7 sound speed).
     #[inline]
     pub fn bulk_modulus_at_reference(&self) -> f64 {

@@ -114,6 +114,33 @@ impl MieGruneisen {
         self.rho_c2 * mu * numerator / (d * d) + energy_term
     }
 
+    /// (∂p/∂μ, ∂p/∂E_v) of [`pressure`](Self::pressure) (see
+    /// [`super::EquationOfState::isentropic_bulk_modulus`]). Compressed, with N(μ) = 1 +
+    /// (1 − γ0/2)μ − (a/2)μ²: ∂p/∂μ = ρ0C²[(N + μN′)/D² − 2μN D′/D³] + a E_v, where
+    /// D′ = −(S1 − 1) − S2 μ(2 + μ)/(1 + μ)² − S3 μ²(3 + μ)/(1 + μ)³; expanded: ρ0C² + a E_v;
+    /// ∂p/∂E_v = γ0 + aμ. `+∞` beyond the limiting compression, as the pressure.
+    #[inline]
+    pub fn pressure_derivatives(&self, mu: f64, energy_per_reference_volume: f64) -> (f64, f64) {
+        let gamma = self.gruneisen_coefficient(mu);
+        let energy_slope = self.p.a * energy_per_reference_volume;
+        if mu <= 0.0 {
+            return (self.rho_c2 + energy_slope, gamma);
+        }
+        let d = self.denominator(mu);
+        if mu >= self.compression_limit || d <= 0.0 {
+            return (f64::INFINITY, gamma);
+        }
+        let (gamma0, a) = (self.p.gamma0, self.p.a);
+        let n = 1.0 + (1.0 - 0.5 * gamma0) * mu - 0.5 * a * mu * mu;
+        let dn = (1.0 - 0.5 * gamma0) - a * mu;
+        let one = 1.0 + mu;
+        let dd = -(self.p.s1 - 1.0)
+            - self.p.s2 * mu * (2.0 + mu) / (one * one)
+            - self.p.s3 * mu * mu * (3.0 + mu) / (one * one * one);
+        let slope = self.rho_c2 * ((n + mu * dn) / (d * d) - 2.0 * mu * n * dd / (d * d * d));
+        (slope + energy_slope, gamma)
+    }
+
     /// ρ0C² \[Pa\], the bulk modulus at the reference state (numerics.md §7 sound speed).
     #[inline]
     pub fn bulk_modulus_at_reference(&self) -> f64 {

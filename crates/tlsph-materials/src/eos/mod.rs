@@ -43,6 +43,37 @@ impl EquationOfState {
         }
     }
 
+    /// Isentropic bulk modulus K_s = ρ (∂p/∂ρ)_s \[Pa\] at compression μ and energy E_v: with
+    /// ρ = ρ0(1 + μ), E_v = ρ0 e and de = (p/ρ²) dρ along an isentrope,
+    /// K_s = (1 + μ) ∂p/∂μ + (p/(1 + μ)) ∂p/∂E_v. The sound speed of the stability limit is
+    /// c = sqrt((K_s + 4G/3)/ρ) (numerics.md §7, §8.10, with K_eff the current tangent rather
+    /// than the reference value: a Mie–Grüneisen solid stiffens several-fold under strong
+    /// compression, and a step sized for K0 is then unstable). At μ = 0, E_v = 0 it is
+    /// [`bulk_modulus_at_reference`](Self::bulk_modulus_at_reference).
+    #[inline]
+    pub fn isentropic_bulk_modulus(&self, mu: f64, energy_per_reference_volume: f64) -> f64 {
+        let e = energy_per_reference_volume;
+        let (dp_dmu, dp_de) = self.pressure_derivatives(mu, e);
+        let one = 1.0 + mu;
+        let thermal = if dp_de == 0.0 {
+            0.0
+        } else {
+            self.pressure(mu, e) / one * dp_de
+        };
+        one * dp_dmu + thermal
+    }
+
+    /// (∂p/∂μ, ∂p/∂E_v) at (μ, E_v): the slopes of [`pressure`](Self::pressure).
+    #[inline]
+    pub fn pressure_derivatives(&self, mu: f64, energy_per_reference_volume: f64) -> (f64, f64) {
+        let e = energy_per_reference_volume;
+        match self {
+            Self::Linear(eos) => eos.pressure_derivatives(mu, e),
+            Self::Polynomial(eos) => eos.pressure_derivatives(mu, e),
+            Self::MieGruneisen(eos) => eos.pressure_derivatives(mu, e),
+        }
+    }
+
     /// Bulk modulus at the reference state K0 \[Pa\] for the sound speed
     /// c = sqrt((K0 + 4G/3)/ρ) (numerics.md §7, §8.10): K, C1 or ρ0C².
     #[inline]

@@ -46,6 +46,20 @@ impl PolynomialEos {
             + (c[4] + c[5] * mu + c[6] * mu_bar2) * energy_per_reference_volume
     }
 
+    /// (∂p/∂μ, ∂p/∂E_v) of [`pressure`](Self::pressure): (C1 + 2C2μ̄ + 3C3μ² + (C5 + 2C6μ̄)E_v,
+    /// C4 + C5μ + C6μ̄²) (see [`super::EquationOfState::isentropic_bulk_modulus`]).
+    #[inline]
+    pub fn pressure_derivatives(&self, mu: f64, energy_per_reference_volume: f64) -> (f64, f64) {
+        let c = &self.c;
+        let mu_bar = mu.max(0.0);
+        (
+            c[1] + 2.0 * c[2] * mu_bar
+                + 3.0 * c[3] * mu * mu
+                + (c[5] + 2.0 * c[6] * mu_bar) * energy_per_reference_volume,
+            c[4] + c[5] * mu + c[6] * mu_bar * mu_bar,
+        )
+    }
+
     /// C1 \[Pa\] (numerics.md §7 sound speed).
     #[inline]
     pub fn bulk_modulus_at_reference(&self) -> f64 {

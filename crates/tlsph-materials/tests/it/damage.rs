@@ -79,13 +79,19 @@ fn johnson_cook_failure_guards() {
     let hot = JohnsonCookFailure::new(0.5, 0.0, 0.0, 0.0, 1.0).unwrap();
     assert_eq!(hot.strain_to_failure(0.0, 1.0, 3.0), 1.0);
     assert_eq!(hot.strain_to_failure(0.0, 1.0, -3.0), 0.5);
-    // ε_f never drops below 1e-4, even for a fit that goes negative.
-    let brittle = JohnsonCookFailure::new(-0.1, 0.0, 0.0, 0.0, 0.0).unwrap();
+    // ε_f never drops below 1e-4, even where a fit goes negative (iron-like D1 < 0: ε_f < 0
+    // at high triaxiality, D1 + D2 > 0 at zero).
+    let brittle = JohnsonCookFailure::new(-2.2, 5.43, -0.47, 0.0, 0.0).unwrap();
     assert_eq!(
-        brittle.strain_to_failure(0.0, 1.0, 0.0),
+        brittle.strain_to_failure(10.0, 1.0, 0.0),
         MIN_STRAIN_TO_FAILURE
     );
-    assert_eq!(brittle.damage_increment(1e-5, 0.0, 1.0, 0.0), 0.1);
+    assert_eq!(brittle.damage_increment(1e-5, 10.0, 1.0, 0.0), 0.1);
+    // A fit with no positive failure strain even at zero triaxiality is refused.
+    for (d1, d2) in [(0.0, 0.0), (-0.1, 0.0), (-0.5, 0.2)] {
+        let e = JohnsonCookFailure::new(d1, d2, 0.0, 0.0, 0.0).unwrap_err();
+        assert_eq!(e.parameter, "d", "{e}");
+    }
     // Triaxiality σ* = −p/σ̄, skipped below 1e-9·A.
     let a = 90e6;
     assert_eq!(

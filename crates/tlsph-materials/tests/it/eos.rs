@@ -318,3 +318,62 @@ fn cutoff_rejects_unknown_types_and_zero_strengths() {
         "pressure_cutoff"
     );
 }
+
+/// K_s = ρ(∂p/∂ρ)_s measured by a central difference *along an isentrope*: a compression
+/// step dμ carries the energy dE_v = p dμ/(1 + μ)² (de = p dρ/ρ², E_v = ρ0 e, ρ = ρ0(1 + μ)).
+fn isentropic_difference(eos: &EquationOfState, mu: f64, energy: f64) -> f64 {
+    let delta = 1e-6;
+    let p = eos.pressure(mu, energy);
+    let de = p * delta / ((1.0 + mu) * (1.0 + mu));
+    let up = eos.pressure(mu + delta, energy + de);
+    let down = eos.pressure(mu - delta, energy - de);
+    (1.0 + mu) * (up - down) / (2.0 * delta)
+}
+
+#[test]
+fn the_isentropic_bulk_modulus_is_the_slope_of_pressure_along_an_isentrope() {
+    let models: [(&str, EquationOfState); 5] = [
+        ("cu9", cu9().into()),
+        ("al-gr", al_gr().into()),
+        ("pmma", pmma().into()),
+        ("linear", LinearEos::new(68.6e9).unwrap().into()),
+        (
+            "polynomial",
+            PolynomialEos::new([1e8, 70e9, 40e9, 20e9, 0.5, 1.5, 0.8])
+                .unwrap()
+                .into(),
+        ),
+    ];
+    // Tension, reference, moderate and strong compression; cold and hot (E_v up to the
+    // below the Hugoniot energy of a 1 km/s impact on copper, ½ρ0u_p² ≈ 4.5e9 J/m³).
+    for (name, eos) in &models {
+        for mu in [-0.05, -1e-3, 0.0 + 2e-6, 0.05, 0.3, 0.6] {
+            for energy in [0.0, 1e8, 2e9] {
+                let exact = eos.isentropic_bulk_modulus(mu, energy);
+                let measured = isentropic_difference(eos, mu, energy);
+                // A central difference of step 1e-6 is exact to O(1e-12) in the curvature
+                // terms; round-off in p/δ (p ≈ 1e11, ε ≈ 1e-16) leaves ≈ 1e-5 of K.
+                assert_relative_eq!(exact, measured, max_relative = 1e-6);
+                assert!(exact.is_finite() && exact > 0.0, "{name} μ={mu} E={energy}");
+            }
+        }
+        // At rest and unstressed it is the reference modulus (the polynomial's C0 = 1e8 Pa
+        // adds C0·C4 there, the thermal pressure's stiffening).
+        let rest = eos.isentropic_bulk_modulus(0.0, 0.0);
+        let thermal = eos.pressure(0.0, 0.0) * eos.pressure_derivatives(0.0, 0.0).1;
+        assert_relative_eq!(
+            rest,
+            eos.bulk_modulus_at_reference() + thermal,
+            max_relative = 1e-12
+        );
+    }
+    // Copper stiffens: at the 1 km/s Hugoniot state (μ ≈ 0.19) K_s is about twice ρ0C².
+    let cu: EquationOfState = cu9().into();
+    let mu = 0.19;
+    let ratio =
+        cu.isentropic_bulk_modulus(mu, cu9().hugoniot_energy(mu)) / cu.bulk_modulus_at_reference();
+    assert!((1.7..2.6).contains(&ratio), "K_s/K0 = {ratio}");
+    // Beyond the limiting compression the modulus is infinite, as the pressure.
+    let limit = cu9().compression_limit();
+    assert_eq!(cu.isentropic_bulk_modulus(limit * 1.01, 0.0), f64::INFINITY);
+}
