@@ -98,6 +98,19 @@ pub enum StepError {
         /// det F.
         jacobian: f64,
     },
+    /// The stable time step came out zero or not a number, so the run cannot advance (e.g. a
+    /// speed whose square overflows, or a contact stiffness that does). Without this error the
+    /// run would look finished.
+    TimeStepCollapse {
+        /// Step number.
+        step: u64,
+        /// Simulated time \[s\].
+        time: f64,
+        /// The particle that set the limit, when one did (not an effect's vote).
+        particle: Option<LimitingParticle>,
+        /// The step the stability limit gave.
+        dt: f64,
+    },
     /// The reference configuration could not be rebuilt on the current positions (e.g. a
     /// particle crossed a symmetry plane).
     ReferenceUpdate {
@@ -133,6 +146,35 @@ impl fmt::Display for StepError {
                 f,
                 "step {step} (t = {time:e}): particle {particle} of body `{body}` is inverted or crushed (det F = {jacobian:e} <= 0)"
             ),
+            StepError::TimeStepCollapse {
+                step,
+                time,
+                particle,
+                dt,
+            } => {
+                write!(
+                    f,
+                    "step {step} (t = {time:e}): the stable time step is {dt:e}, so the run cannot advance"
+                )?;
+                match particle {
+                    Some(LimitingParticle {
+                        body,
+                        particle,
+                        speed,
+                        sound_speed,
+                    }) => {
+                        write!(
+                            f,
+                            " (limited by particle {particle} of body `{body}`: speed {speed:e}, sound speed {sound_speed:e}"
+                        )?;
+                        if sound_speed.is_infinite() {
+                            write!(f, ": compressed beyond its equation of state's limit")?;
+                        }
+                        write!(f, ")")
+                    }
+                    None => Ok(()),
+                }
+            }
             StepError::ReferenceUpdate {
                 step,
                 time,
@@ -146,3 +188,16 @@ impl fmt::Display for StepError {
 }
 
 impl std::error::Error for StepError {}
+
+/// The particle whose CFL limit h/(c + |v|) collapsed the time step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitingParticle {
+    /// Body name.
+    pub body: String,
+    /// Particle index within the body.
+    pub particle: usize,
+    /// |v| \[m/s\].
+    pub speed: f64,
+    /// Current sound speed c \[m/s\] (numerics.md §8.10).
+    pub sound_speed: f64,
+}

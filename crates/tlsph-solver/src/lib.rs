@@ -29,7 +29,7 @@ mod updated_lagrangian;
 
 pub use bonds::{Bonds, CorrectionReport};
 pub use diagnostics::Diagnostics;
-pub use error::{SetupError, StepError};
+pub use error::{LimitingParticle, SetupError, StepError};
 pub use fields::ParticleField;
 pub use ghosts::MIN_PLANE_DISTANCE;
 pub use model::{
@@ -40,6 +40,8 @@ pub use model::{
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
     WallDescription,
 };
-pub use simulation::{BodyInfo, BondMetrics, Simulation, StepReport};
+pub use simulation::{
+    check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport, INITIAL_YIELD_TOLERANCE,
+};
 pub use tlsph_kernels::KernelKind;
 pub use updated_lagrangian::{CurrentPairs, SKIN_FRACTION};

@@ -129,6 +129,18 @@ pub enum StrengthModel {
     },
 }
 
+impl StrengthModel {
+    /// Yield stress of the virgin material, σ_y(ε̄p = 0) \[Pa\]: σ_y0 (von Mises) or A
+    /// (Johnson–Cook at room temperature and a quasi-static rate, numerics.md §8.5). A starting
+    /// stress with a larger von Mises stress lies outside the yield surface.
+    pub fn initial_yield_stress(&self) -> f64 {
+        match self {
+            StrengthModel::VonMises(m) => m.initial_yield_stress(),
+            StrengthModel::JohnsonCook { model, .. } => model.parameters().a,
+        }
+    }
+}
+
 /// How the pressure of an elastic–plastic material is obtained (numerics.md §8.3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PressureModel {
@@ -205,6 +217,19 @@ impl MaterialModel {
             MaterialModel::ElasticPlastic(m) => {
                 m.bulk_modulus() + 4.0 / 3.0 * m.elastic.shear_modulus()
             }
+        }
+    }
+
+    /// The equation of state and the shear modulus G of a material whose pressure comes from
+    /// one (for its current sound speed, numerics.md §8.10); `None` for a constant bulk modulus.
+    pub fn equation_of_state(&self) -> Option<(EquationOfState, f64)> {
+        match self {
+            MaterialModel::ElasticPlastic(ElasticPlastic {
+                pressure: PressureModel::Eos(eos),
+                elastic,
+                ..
+            }) => Some((*eos, elastic.shear_modulus())),
+            _ => None,
         }
     }
 

@@ -8,7 +8,7 @@ use crate::effects::{
     BodyForce, BookedEffect, Configuration, EffectContext, HourglassControl,
     MonaghanArtificialStress, MonaghanViscosity, ParticleContact, PenaltyContact, RigidWall,
 };
-use crate::error::{SetupError, StepError};
+use crate::error::{LimitingParticle, SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::ghosts::{check_planes, reflections, Ghosts};
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
@@ -29,6 +29,9 @@ use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
 
+/// Relative tolerance on the yield surface for a starting stress: a von Mises stress up to
+/// σ_y0 (1 + 1e-9) counts as on the surface (a value copied from a table, rounded in print).
+pub const INITIAL_YIELD_TOLERANCE: f64 = 1e-9;
 /// Static facts about one body of a running simulation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyInfo {
@@ -566,7 +569,7 @@ impl<const D: usize> Simulation<D> {
                 effect_limit = min_by_value_then_index(effect_limit, limit);
             }
         }
-        let (next_dt, limiting_particle) = self.stable_dt(effect_limit);
+        let (next_dt, limiting_particle) = self.stable_dt(effect_limit, step)?;
         // Kick: v^{n+½} = v^{n−½} + ½(Δt^n + Δt^{n+1}) a^n (R 5.64–5.66; Δt^0 = 0 gives the
         // first half step).
         let kick = 0.5 * (dt + next_dt);
@@ -641,37 +644,96 @@ impl<const D: usize> Simulation<D> {
         self.steps_done > 0 && self.next_dt <= 0.0
     }
 
-    /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70), or
+    /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70; for a
+    /// material with an equation of state c_I = sqrt((K_s + 4G/3)/ρ_I) with the EOS's current
+    /// isentropic bulk modulus K_s, numerics.md §8.10 `[C]`), or
     /// the effects' limit (contact, numerics.md §7) when smaller, clipped so the run ends
-    /// exactly at `end_time`.
-    fn stable_dt(&self, effect_limit: (f64, usize)) -> (f64, usize) {
+    /// exactly at `end_time`. A limit that is zero, not a number, or too small to advance the
+    /// clock (a speed whose square overflows, say) is an error: the run could not advance, yet
+    /// would look finished.
+    fn stable_dt(&self, effect_limit: (f64, usize), step: u64) -> Result<(f64, usize), StepError> {
         let mut best = (f64::INFINITY, 0usize);
+        let p = &self.particles;
         for info in &self.bodies {
             let r = info.range.clone();
-            let local = self.particles.velocities[r.clone()]
-                .par_iter()
-                .zip(self.particles.jacobian[r.clone()].par_iter())
-                .enumerate()
-                .map(|(k, (v, j))| {
-                    let c = info.sound_speed0 * j.max(0.0).sqrt();
-                    (info.smoothing_length / (c + v.norm()), r.start + k)
-                })
-                .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index);
+            let h = info.smoothing_length;
+            let velocities = p.velocities[r.clone()].par_iter();
+            let jacobians = p.jacobian[r.clone()].par_iter();
+            let local = match self.materials[info.material].equation_of_state() {
+                // c = sqrt((K_s(μ, E_v) + 4G/3) J/ρ0): the EOS's current isentropic
+                // stiffness, which grows several-fold in a strong shock.
+                Some((eos, shear)) => {
+                    let (rho0, shear_term) = (info.density0, 4.0 / 3.0 * shear);
+                    velocities
+                        .zip(jacobians)
+                        .zip(p.internal_energy[r.clone()].par_iter())
+                        .enumerate()
+                        .map(|(k, ((v, &j), &e))| {
+                            let c = eos_sound_speed(&eos, shear_term, rho0, j, e);
+                            (h / (c + v.norm()), r.start + k)
+                        })
+                        .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index)
+                }
+                // A constant modulus: c = c0 sqrt(J) (R 5.69–5.70).
+                None => velocities
+                    .zip(jacobians)
+                    .enumerate()
+                    .map(|(k, (v, j))| {
+                        let c = info.sound_speed0 * j.max(0.0).sqrt();
+                        (h / (c + v.norm()), r.start + k)
+                    })
+                    .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index),
+            };
             best = min_by_value_then_index(best, local);
         }
         let remaining = self.config.end_time - self.time;
         best.0 *= self.config.cfl;
-        if effect_limit.0 < best.0 {
+        if effect_limit.0 < best.0 || effect_limit.0.is_nan() {
             best = effect_limit;
         }
         let dt = best.0;
+        // `time + dt == time`: a step too small to move the clock would never end the run.
+        if dt.is_nan() || dt <= 0.0 || self.time + dt == self.time {
+            let limiting = (best.1 < self.n_particles()).then(|| {
+                let (body, particle) = self.locate(best.1);
+                LimitingParticle {
+                    body,
+                    particle,
+                    speed: p.velocities[best.1].norm(),
+                    sound_speed: self.sound_speed(best.1),
+                }
+            });
+            return Err(StepError::TimeStepCollapse {
+                step,
+                time: self.time,
+                particle: limiting,
+                dt,
+            });
+        }
         // Avoid a sliver of a final step: stretch into the end when within 1 % of it.
         let dt = if remaining <= dt * 1.01 {
             remaining.max(0.0)
         } else {
             dt
         };
-        (dt, best.1)
+        Ok((dt, best.1))
+    }
+
+    /// The current sound speed of particle `i` as the time step sees it (the per-body loops of
+    /// [`Self::stable_dt`], for one particle; for error messages).
+    fn sound_speed(&self, i: usize) -> f64 {
+        let p = &self.particles;
+        let info = &self.bodies[body_index(&self.bodies, i)];
+        match self.materials[info.material].equation_of_state() {
+            Some((eos, shear)) => eos_sound_speed(
+                &eos,
+                4.0 / 3.0 * shear,
+                info.density0,
+                p.jacobian[i],
+                p.internal_energy[i],
+            ),
+            None => info.sound_speed0 * p.jacobian[i].max(0.0).sqrt(),
+        }
     }
 
     /// Takes the particles that failed in this step's constitutive update out of every sum.
@@ -1007,6 +1069,12 @@ impl<const D: usize> Simulation<D> {
         self.failed_count
     }
 
+    /// Whether particle `i` has failed (numerics.md §9.3): it carries no stress and has left
+    /// every kernel sum.
+    pub fn is_failed(&self, i: usize) -> bool {
+        self.removed.get(i).copied().unwrap_or(false)
+    }
+
     /// Whether any body has a failure or damage model (and so a damage field).
     pub fn has_failure(&self) -> bool {
         !self.removed.is_empty()
@@ -1151,7 +1219,9 @@ impl<const D: usize> Simulation<D> {
         (info.name.clone(), i - info.range.start)
     }
 
-    /// Sets a uniform initial Cauchy stress σ0 (symmetric, tension positive) on every particle
+    /// Sets a uniform initial Cauchy stress σ0 (symmetric, tension positive; for an
+    /// elastic–plastic material on or inside its initial yield surface, to
+    /// [`INITIAL_YIELD_TOLERANCE`]) on every particle
     /// of body `body` before the first step, e.g. a prestressed state (problems.md R-P5). The
     /// rate-form stress updates carry it on; the Green–Lagrange path computes stress from F
     /// alone, an equation of state computes pressure from J alone and a damage model keeps its
@@ -1188,6 +1258,18 @@ impl<const D: usize> Simulation<D> {
                 "body `{}`: its stress is a function of the current state (Green–Lagrange path, an equation of state, or a damage model's effective stress), so an initial stress would be lost",
                 info.name
             ));
+        }
+        if let MaterialModel::ElasticPlastic(m) = material {
+            let (equivalent, yield_stress) = (
+                tlsph_math::von_mises(&stress),
+                m.strength.initial_yield_stress(),
+            );
+            if equivalent > yield_stress * (1.0 + INITIAL_YIELD_TOLERANCE) {
+                return refuse(format!(
+                    "body `{}`: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
+                    info.name
+                ));
+            }
         }
         let range = info.range.clone();
         self.particles.stress[range.clone()].fill(stress);
@@ -1318,6 +1400,9 @@ impl<const D: usize> Simulation<D> {
             ParticleField::Velocity(k) => component(self.velocity(i), k),
             ParticleField::Displacement(k) => component(self.total_displacement(i), k),
             ParticleField::Position(k) => component(p.positions0[i] + p.displacements[i], k),
+            // A failed particle is a free point mass: it has no neighbours to measure a volume
+            // by (its F is left at I), so its J and density are not defined.
+            ParticleField::Density | ParticleField::Jacobian if self.is_failed(i) => f64::NAN,
             ParticleField::Density => {
                 let info = &self.bodies[self.body_of(i)];
                 info.density0 / p.jacobian[i]
@@ -1348,9 +1433,12 @@ impl<const D: usize> Simulation<D> {
 
     /// Whether any body tracks a temperature (adiabatic heating declared).
     pub fn has_temperature(&self) -> bool {
-        self.plastic
-            .iter()
-            .any(|s| matches!(s, PlasticState::StrainTemperature(_)))
+        self.plastic.iter().any(|s| {
+            matches!(
+                s,
+                PlasticState::StrainTemperature(_) | PlasticState::StrainTemperatureDamage(_)
+            )
+        })
     }
 
     /// Whether any body carries an effective plastic strain.
@@ -2297,7 +2385,51 @@ fn validate_body<const D: usize>(
     {
         return fail(format!("particle {i} has a non-finite velocity"));
     }
+    if let Err(message) = check_kinetic_energy(&body.velocities, &body.volumes, density) {
+        return fail(message);
+    }
     Ok(())
+}
+
+/// Sound speed c = sqrt((K_s + 4G/3) J/ρ0) of a particle whose pressure comes from `eos`,
+/// with K_s the isentropic bulk modulus at μ = 1/J − 1 and E_v = ρ0 e (numerics.md §8.10;
+/// `shear_term` = 4G/3, `specific_energy` = e). Infinite beyond a limiting compression.
+#[inline]
+fn eos_sound_speed(
+    eos: &tlsph_materials::EquationOfState,
+    shear_term: f64,
+    rho0: f64,
+    jacobian: f64,
+    specific_energy: f64,
+) -> f64 {
+    let modulus = eos.isentropic_bulk_modulus(1.0 / jacobian - 1.0, rho0 * specific_energy);
+    ((modulus + shear_term) * jacobian / rho0).max(0.0).sqrt()
+}
+
+/// The kinetic energy Σ ½ ρ0 V_I |v_I|² of a body's starting state, or a message naming the
+/// first particle (or the body as a whole) whose kinetic energy overflows f64. A velocity whose
+/// square overflows (|v| ≳ 1e154) leaves no finite energy balance and no finite time step
+/// (numerics.md §6: Δt ∝ h / (c + |v|)), so a run would end after one step of nothing.
+pub fn check_kinetic_energy<const D: usize>(
+    velocities: &[Vector<D>],
+    volumes: &[f64],
+    density: f64,
+) -> Result<f64, String> {
+    let mut total = 0.0;
+    for (i, (v, volume)) in velocities.iter().zip(volumes).enumerate() {
+        let energy = 0.5 * density * volume * v.norm_squared();
+        if !energy.is_finite() {
+            return Err(format!(
+                "particle {i}: the kinetic energy ½ρV|v|² of its velocity {:?} is not a finite number",
+                v.as_slice()
+            ));
+        }
+        total += energy;
+    }
+    if !total.is_finite() {
+        return Err("the body's kinetic energy is not a finite number".into());
+    }
+    Ok(total)
 }
 
 #[cfg(test)]

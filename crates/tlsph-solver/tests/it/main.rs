@@ -539,6 +539,68 @@ fn a_non_finite_velocity_is_reported_with_particle_and_field() {
 }
 
 #[test]
+fn a_speed_whose_kinetic_energy_overflows_is_refused_at_setup() {
+    // 1e200 m/s is a finite number, but ½ρV|v|² (and |v| in the CFL limit) overflow: before,
+    // the run took one step with Δt = 0 and reported itself finished.
+    let dx = 0.1;
+    let positions = lattice([2, 2], dx);
+    let Err(error) = Simulation::new(model(
+        positions,
+        dx,
+        |x| Vector::<2>::new(if x[0] > 0.05 { 1e200 } else { 0.0 }, 0.0),
+        Setup::default(),
+    )) else {
+        panic!("an overflowing kinetic energy must be refused");
+    };
+    let message = error.to_string();
+    assert!(
+        message.contains("block")
+            && message.contains("particle 2")
+            && message.contains("kinetic energy"),
+        "{message}"
+    );
+    // 1e150 m/s still has a finite energy for this density and volume (½·1·1e-2·1e300 = 5e297).
+    let fine = Simulation::new(model(
+        lattice([2, 2], dx),
+        dx,
+        |_| Vector::<2>::new(1e150, 0.0),
+        Setup::default(),
+    ));
+    assert!(fine.is_ok());
+}
+
+#[test]
+fn a_time_step_that_collapses_is_an_error_not_the_end_of_the_run() {
+    let dx = 0.1;
+    let mut sim = Simulation::new(model(
+        lattice([10], dx),
+        dx,
+        |_| Vector::<1>::zeros(),
+        Setup::default(),
+    ))
+    .unwrap();
+    sim.step().unwrap();
+    // A rigid translation at 1e200 m/s: every value stays finite (F = I), so the non-finite
+    // check passes, but |v| = sqrt(1e400) overflows and h/(c + |v|) is 0.
+    sim.set_velocities(&[Vector::<1>::new(1e200); 10]);
+    let err = sim.step().unwrap_err();
+    match &err {
+        StepError::TimeStepCollapse { particle, dt, .. } => {
+            assert_eq!(*dt, 0.0, "h / (c + inf) is 0");
+            let limiting = particle.as_ref().expect("a particle set the limit");
+            assert_eq!((limiting.body.as_str(), limiting.particle), ("block", 0));
+            assert_eq!(limiting.speed, f64::INFINITY, "|v| = sqrt(1e400)");
+        }
+        other => panic!("unexpected error {other:?}"),
+    }
+    assert!(
+        !sim.finished(),
+        "a run whose step collapsed is not finished"
+    );
+    assert!(err.to_string().contains("cannot advance"), "{err}");
+}
+
+#[test]
 fn an_inverted_particle_is_reported() {
     let dx = 0.1;
     let positions = lattice([10], dx);

@@ -179,6 +179,10 @@ fn failed_particle_case(formulation: Formulation) {
     assert_eq!(failed.len(), sim.failed_particles());
     for &i in &failed {
         assert_eq!(sim.stresses()[i], Tensor3::zeros());
+        assert!(sim.is_failed(i));
+        // No neighbours measure its volume: J and density are undefined, not J = 1 and ρ0.
+        assert!(sim.sample(ParticleField::Jacobian, i).is_nan());
+        assert!(sim.sample(ParticleField::Density, i).is_nan());
         // Failed particles sit near the centre, where the tension was largest.
         assert!(
             (positions[i][0] - 0.5).abs() < 0.1,
@@ -211,4 +215,125 @@ fn failed_particle_case(formulation: Formulation) {
     assert!(deleted > 0.0);
     assert!((column - deleted).abs() <= 1e-12 * all.abs());
     assert!((d.internal + column - all).abs() <= 1e-12 * all.abs());
+}
+
+#[test]
+fn the_time_step_follows_the_stiffening_of_an_equation_of_state() {
+    // A copper rod (Mie–Grüneisen, M-CU9) compressed uniformly to J = 0.75 (μ = 1/3) before
+    // the first step. Its sound speed is sqrt((K_s + 4G/3)/ρ) with K_s the EOS's isentropic
+    // modulus there, 2.46 ρ0C²; the constant-modulus estimate c0 sqrt(J) would give a step
+    // 1.6 times too long (numerics.md §8.10), past the stability limit at CFL 0.7 and more.
+    use tlsph_materials::eos::MieGruneisenParameters;
+    use tlsph_materials::{EquationOfState, MieGruneisen};
+    let (n, dx, rho0) = (40, 1e-4, 8924.0);
+    let eos: EquationOfState = MieGruneisen::new(MieGruneisenParameters {
+        reference_density: rho0,
+        sound_speed: 3940.0,
+        s1: 1.489,
+        s2: 0.0,
+        s3: 0.0,
+        gamma0: 2.02,
+        a: 0.47,
+    })
+    .unwrap()
+    .into();
+    let mut material = copper();
+    material.pressure = PressureModel::Eos(eos);
+    let shear = material.elastic.shear_modulus();
+    // The rod at rest, uniformly compressed to J before its first step.
+    let compressed_rod = |j: f64| {
+        let mut m = model(
+            lattice([n], dx),
+            dx,
+            |_| Vector::<1>::zeros(),
+            Setup::default(),
+        );
+        m.materials[0].density = rho0;
+        m.materials[0].model = MaterialModel::ElasticPlastic(material);
+        let mut sim = Simulation::new(m).unwrap();
+        let u: Vec<Vector<1>> = lattice([n], dx).iter().map(|x| x * (j - 1.0)).collect();
+        sim.set_displacements(&u);
+        sim
+    };
+    let j = 0.75;
+    let mut sim = compressed_rod(j);
+    // The first step has Δt = 0: no energy is deposited, so E_v = 0 at the new step's vote.
+    sim.step().unwrap();
+    for i in 0..n {
+        let jacobian = sim.sample(ParticleField::Jacobian, i);
+        assert!((jacobian - j).abs() < 1e-12, "corrected gradients: J exact");
+    }
+    let mu = 1.0 / j - 1.0;
+    let k_s = eos.isentropic_bulk_modulus(mu, 0.0);
+    let c = ((k_s + 4.0 / 3.0 * shear) * j / rho0).sqrt();
+    let h = 1.2 * dx;
+    let expected = 0.3 * h / c;
+    assert!(
+        (sim.next_dt() / expected - 1.0).abs() < 1e-12,
+        "Δt = {:e}, expected {expected:e}",
+        sim.next_dt()
+    );
+    let constant_modulus = 0.3 * h
+        / (((eos.bulk_modulus_at_reference() + 4.0 / 3.0 * shear) / rho0).sqrt() * j.sqrt());
+    assert!(
+        constant_modulus / expected > 1.55,
+        "the stiffening matters here: {constant_modulus:e} vs {expected:e}"
+    );
+    // Beyond the limiting compression μ_lim = 1/(S1 − 1) = 2.04 (J < 0.329) the sound speed
+    // is infinite: the step collapses with an error that names the particle and says why.
+    match compressed_rod(0.3).step().unwrap_err() {
+        tlsph_solver::StepError::TimeStepCollapse {
+            particle: Some(limiting),
+            ..
+        } => assert_eq!(limiting.sound_speed, f64::INFINITY),
+        other => panic!("unexpected {other}"),
+    }
+}
+
+/// A 4 × 4 block (spacing 1 mm, ρ = 8930 kg/m³) of `material`, at rest.
+fn copper_block(material: ElasticPlastic) -> Simulation<2> {
+    let dx = 1e-3;
+    let mut m = model(
+        lattice([4, 4], dx),
+        dx,
+        |_| Vector::<2>::zeros(),
+        Setup::default(),
+    );
+    m.materials[0].density = 8930.0;
+    m.materials[0].model = MaterialModel::ElasticPlastic(material);
+    Simulation::new(m).unwrap()
+}
+
+#[test]
+fn a_material_with_heating_and_failure_reports_its_temperature() {
+    // Before, `has_temperature` missed the [ε̄p, T, D, status] state, so frames of a material
+    // with both `specific_heat` and `failure` dropped the temperature array.
+    use tlsph_materials::MaxPlasticStrainFailure;
+    use tlsph_solver::{FailureModel, Thermal};
+    let room = 293.0;
+    let mut material = copper();
+    material.thermal = Some(Thermal {
+        specific_heat: 383.0,
+        room_temperature: room,
+    });
+    material.failure = Some(FailureModel::MaxPlasticStrain(
+        MaxPlasticStrainFailure::new(0.5).unwrap(),
+    ));
+    let mut sim = copper_block(material);
+    sim.step().unwrap();
+    assert!(sim.has_temperature() && sim.has_failure());
+    assert_eq!(sim.sample(ParticleField::Temperature, 5), room);
+}
+
+#[test]
+fn a_starting_stress_outside_the_yield_surface_is_refused() {
+    // σ_y0 = 90 MPa: a uniaxial 100 MPa would be returned to the surface by the first step.
+    let build = || copper_block(copper());
+    let uniaxial = |s: f64| Tensor3::new(s, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let error = build().set_initial_stress(0, uniaxial(100e6)).unwrap_err();
+    assert!(error.to_string().contains("yield surface"), "{error}");
+    assert!(build().set_initial_stress(0, uniaxial(90e6)).is_ok());
+    assert!(build()
+        .set_initial_stress(0, Tensor3::identity() * -1e9)
+        .is_ok());
 }
