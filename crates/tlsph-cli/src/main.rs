@@ -46,12 +46,13 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { scene } => match load_scene(&scene) {
             Ok(s) => {
+                let probes = s.probes.len();
                 println!(
-                    "{}: {}D scene with {} particles, {} probes, end time {}",
+                    "{}: {}D scene with {} particles, {probes} probe{}, end time {}",
                     scene.display(),
                     s.dimension(),
                     s.n_particles(),
-                    s.probes.len(),
+                    if probes == 1 { "" } else { "s" },
                     s.end_time()
                 );
                 ExitCode::SUCCESS

@@ -138,6 +138,21 @@ fn a_run_that_breaks_down_exits_one_names_the_particle_and_keeps_its_output() {
     );
     let summary = fs::read_to_string(tmp.path().join("out/summary.toml")).unwrap();
     assert!(summary.contains("status = \"failed\""), "{summary}");
+    // One numbering: the run failed at step k after k − 1 completed time steps.
+    let number_after = |text: &str, key: &str| -> u64 {
+        let rest = &text[text.find(key).unwrap_or_else(|| panic!("{key} in {text}")) + key.len()..];
+        rest.chars()
+            .take_while(char::is_ascii_digit)
+            .collect::<String>()
+            .parse()
+            .unwrap()
+    };
+    let failed = number_after(&err, "step ");
+    assert_eq!(
+        number_after(&summary, "\nsteps = "),
+        failed - 1,
+        "{err}\n{summary}"
+    );
     let probe = fs::read_to_string(tmp.path().join("out/probes/target-mid.csv")).unwrap();
     assert!(
         probe.lines().count() >= 2,

@@ -12,8 +12,8 @@ pub mod vtk;
 
 pub use geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape, VOLUME_SUBSAMPLES};
 pub use run::{
-    frame_of, run_model, run_scene, run_scene_to_dir, run_scene_with_frames, write_csv, FrameSink,
-    Intervals, ProbeHistory, Progress, RunError, RunRecord,
+    check_output_dir, frame_of, run_model, run_scene, run_scene_to_dir, run_scene_with_frames,
+    write_csv, FrameSink, Intervals, ProbeHistory, Progress, RunError, RunRecord,
 };
 pub use scene::{
     load_scene, parse_scene, DimensionModel, OutputSpec, ProbeSpec, Scene, SceneError,

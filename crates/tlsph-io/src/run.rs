@@ -40,7 +40,8 @@ pub struct RunRecord {
     pub probes: Vec<ProbeHistory>,
     /// Energies and momenta at the output interval (first at t = 0, last at the final time).
     pub diagnostics: Vec<Diagnostics>,
-    /// Steps taken.
+    /// Time steps taken: the last step's index (step 0 evaluates the state at t = 0, step k
+    /// ends at t^k), the numbering of `stability.csv` and of a failed step's message.
     pub steps: u64,
     /// Particle count.
     pub particles: usize,
@@ -246,7 +247,7 @@ pub fn run_model<const D: usize>(
     let record = RunRecord {
         probes: histories,
         diagnostics,
-        steps: sim.steps_done(),
+        steps: sim.steps_done().saturating_sub(1),
         particles: sim.n_particles(),
         wall_s: start.elapsed().as_secs_f64(),
         failure,
@@ -338,13 +339,17 @@ pub fn run_scene_to_dir(
             message: e.to_string(),
         })?;
     }
-    write_run_folder(scene, &record, dir, !frames.is_empty())?;
+    write_run_folder(scene, &record, &partial, dir)?;
     Ok(record)
 }
 
-/// Makes an empty `<dir>.partial/` before the run (a stale one from an interrupted run is
-/// removed), so an output location that cannot be written is reported before any time is spent
-/// computing, not after.
+/// The file that marks `<dir>.partial/` as this tool's working folder, so that only a folder
+/// it made itself is ever deleted. It is removed just before the folder is renamed into place.
+const PARTIAL_MARKER: &str = ".tlsph-partial";
+
+/// Makes an empty `<dir>.partial/` before the run (a stale one an interrupted run left, known
+/// by its marker file, is removed), so an output location that cannot be written is reported
+/// before any time is spent computing, not after.
 fn prepare_partial(dir: &Path) -> Result<PathBuf, RunError> {
     let partial = sibling(dir, "partial");
     let io = |e: std::io::Error| RunError::Io {
@@ -355,33 +360,131 @@ fn prepare_partial(dir: &Path) -> Result<PathBuf, RunError> {
         fs::remove_dir_all(&partial).map_err(io)?;
     }
     fs::create_dir_all(&partial).map_err(io)?;
+    fs::write(partial.join(PARTIAL_MARKER), b"").map_err(io)?;
     Ok(partial)
 }
 
-/// Refuses to replace a folder that is not a previous run (no `summary.toml`) and not empty.
+/// The last component of an output folder must be a plain folder name (not empty, `.` or `..`):
+/// the run's working folders `<name>.partial` and `<name>.old` sit next to it.
+pub fn check_output_dir(dir: &Path) -> Result<(), String> {
+    // Read the text: `Path::components` drops a trailing `.` (`results/.` would pass as
+    // `results`, yet `<dir>.partial` would land beside its parent).
+    let text = dir.to_string_lossy();
+    let last = text
+        .trim_end_matches(std::path::is_separator)
+        .rsplit(std::path::is_separator)
+        .next()
+        .unwrap_or("");
+    match last {
+        "" | "." | ".." => Err(format!(
+            "`{}` does not end in a folder name (the run folder is made next to its siblings `<name>.partial` and `<name>.old`); give e.g. \"out\" or \"results/run-1\"",
+            dir.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses, before the run, every output location whose swap could lose data: `dir` must be
+/// absent, empty or a previous run (it has `summary.toml`); `<dir>.partial` absent or this
+/// tool's own stale working folder (it has the marker file); `<dir>.old` absent (the swap
+/// makes it and removes it; one that exists is a user's folder or an interrupted swap's
+/// previous result, and is never deleted).
 fn check_replaceable(dir: &Path) -> Result<(), RunError> {
+    check_output_dir(dir).map_err(|message| RunError::Io {
+        path: dir.to_path_buf(),
+        message,
+    })?;
+    let refuse = |path: PathBuf, message: &str| {
+        Err(RunError::Io {
+            path,
+            message: message.into(),
+        })
+    };
+    let partial = sibling(dir, "partial");
+    if partial.exists() && !partial.join(PARTIAL_MARKER).is_file() {
+        return refuse(partial, "exists and is not this tool's working folder (no marker file); it may hold the results of a run whose final rename failed; move or delete it");
+    }
+    let old = sibling(dir, "old");
+    if old.symlink_metadata().is_ok() {
+        return refuse(old, "exists: the run moves the previous results there while it swaps the new ones in, and never deletes a folder it did not make; move or delete it");
+    }
     if !dir.exists() {
         return Ok(());
     }
-    let io = |e: std::io::Error| RunError::Io {
-        path: dir.to_path_buf(),
-        message: e.to_string(),
-    };
     if !dir.is_dir() {
-        return Err(RunError::Io {
-            path: dir.to_path_buf(),
-            message: "exists and is not a folder; choose another output dir".into(),
-        });
+        return refuse(
+            dir.to_path_buf(),
+            "exists and is not a folder; choose another output dir",
+        );
     }
-    let empty = fs::read_dir(dir).map_err(io)?.next().is_none();
+    let empty = fs::read_dir(dir)
+        .map_err(|e| RunError::Io {
+            path: dir.to_path_buf(),
+            message: e.to_string(),
+        })?
+        .next()
+        .is_none();
     if empty || dir.join("summary.toml").is_file() {
         Ok(())
     } else {
-        Err(RunError::Io {
-            path: dir.to_path_buf(),
-            message: "exists and is not a previous run folder (no summary.toml); refusing to overwrite it".into(),
-        })
+        refuse(
+            dir.to_path_buf(),
+            "exists and is not a previous run folder (no summary.toml); refusing to overwrite it",
+        )
     }
+}
+
+/// Swaps the finished `partial` folder into place as `dir`. The previous result survives at
+/// `<dir>.old` until the new one is there; if a rename fails, the error says where each result
+/// is, and nothing is deleted that holds the only copy of a result.
+fn swap_into_place(partial: &Path, dir: &Path) -> Result<(), RunError> {
+    let marker = partial.join(PARTIAL_MARKER);
+    // From here on the working folder holds a finished result: no later run may delete it.
+    fs::remove_file(&marker).map_err(|e| RunError::Io {
+        path: marker.clone(),
+        message: e.to_string(),
+    })?;
+    let stranded = |what: String, e: std::io::Error| RunError::Io {
+        path: dir.to_path_buf(),
+        message: format!(
+            "{what}: {e}; this run's results are complete in `{}`",
+            partial.display()
+        ),
+    };
+    let old = sibling(dir, "old");
+    let moved_aside = dir.exists();
+    if moved_aside {
+        fs::rename(dir, &old).map_err(|e| {
+            stranded(
+                format!(
+                    "cannot move the previous results aside to `{}`",
+                    old.display()
+                ),
+                e,
+            )
+        })?;
+    }
+    if let Err(e) = fs::rename(partial, dir) {
+        let restored = moved_aside && fs::rename(&old, dir).is_ok();
+        let previous = match (moved_aside, restored) {
+            (false, _) => String::new(),
+            (true, true) => " (the previous results are back in place)".into(),
+            (true, false) => format!(" (the previous results are in `{}`)", old.display()),
+        };
+        return Err(stranded(
+            format!("cannot rename the finished run into place{previous}"),
+            e,
+        ));
+    }
+    if moved_aside {
+        fs::remove_dir_all(&old).map_err(|e| RunError::Io {
+            path: old.clone(),
+            message: format!(
+                "the new results are in place, but the previous ones here could not be deleted: {e}; delete it before the next run"
+            ),
+        })?;
+    }
+    Ok(())
 }
 
 /// Writes a force history (`time`, then `<name>_force_x/y/z` for each named force) to `path`;
@@ -408,23 +511,19 @@ fn write_forces(
     write_csv(path, &header, rows)
 }
 
+/// Writes the run's files into the working folder `partial` (made by [`prepare_partial`],
+/// possibly holding frames already) and swaps it into place as `dir`.
 fn write_run_folder(
     scene: &Scene,
     record: &RunRecord,
+    partial: &Path,
     dir: &Path,
-    keep_partial: bool,
 ) -> Result<(), RunError> {
-    let partial = sibling(dir, "partial");
     let io = |path: &Path, e: std::io::Error| RunError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    // With `keep_partial` the partial folder already holds this run's frames; otherwise any
-    // leftover is from an interrupted run.
-    if partial.exists() && !keep_partial {
-        fs::remove_dir_all(&partial).map_err(|e| io(&partial, e))?;
-    }
-    fs::create_dir_all(partial.join("probes")).map_err(|e| io(&partial, e))?;
+    fs::create_dir_all(partial.join("probes")).map_err(|e| io(partial, e))?;
     for probe in &record.probes {
         let mut header = vec!["time".to_string()];
         header.extend(probe.fields.iter().map(|f| f.to_string()));
@@ -523,19 +622,7 @@ fn write_run_folder(
     let summary = summary + &stability_summary(&record.stability);
     let summary_path = partial.join("summary.toml");
     fs::write(&summary_path, summary).map_err(|e| io(&summary_path, e))?;
-    // Swap the finished folder into place; the old result survives until the new one is there.
-    let old = sibling(dir, "old");
-    if dir.exists() {
-        if old.exists() {
-            fs::remove_dir_all(&old).map_err(|e| io(&old, e))?;
-        }
-        fs::rename(dir, &old).map_err(|e| io(dir, e))?;
-    }
-    fs::rename(&partial, dir).map_err(|e| io(dir, e))?;
-    if old.exists() {
-        fs::remove_dir_all(&old).map_err(|e| io(&old, e))?;
-    }
-    Ok(())
+    swap_into_place(partial, dir)
 }
 
 /// The `[stability]` table of `summary.toml`: thresholds, extremes and the first crossing.

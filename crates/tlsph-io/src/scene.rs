@@ -218,7 +218,7 @@ impl Context<'_> {
             &name.span(),
             field,
             format!(
-                "`{}` {is_for}: use letters, digits, `-`, `_` and `.` (not first)",
+                "`{}` {is_for}: use letters, digits, `-`, `_` and `.` (not first), at most {MAX_NAME_LENGTH} characters",
                 name.get_ref()
             ),
         ))
@@ -918,11 +918,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
         });
     }
     let output = OutputSpec {
-        dir: file
-            .output
-            .as_ref()
-            .and_then(|o| o.dir.as_ref())
-            .map_or_else(|| PathBuf::from("out"), |d| PathBuf::from(d.get_ref())),
+        dir: match file.output.as_ref().and_then(|o| o.dir.as_ref()) {
+            Some(d) => {
+                let dir = PathBuf::from(d.get_ref());
+                crate::run::check_output_dir(&dir)
+                    .map_err(|message| ctx.error(&d.span(), "output.dir", message))?;
+                dir
+            }
+            None => PathBuf::from("out"),
+        },
         energy_interval: match file
             .output
             .as_ref()
@@ -1258,9 +1262,33 @@ fn build_body<const D: usize>(
             gradient,
             origin,
         };
+        let first = velocities.len();
         for x in points {
             velocities.push(fill.velocity_at(&x));
             positions.push(x);
+        }
+        // Cuts only take particles and volume away, so a shape that passes here passes after.
+        let shape_volumes = vec![spacing.powi(D as i32); velocities.len() - first];
+        let density = materials[material].density;
+        if let Err(message) =
+            tlsph_solver::check_kinetic_energy(&velocities[first..], &shape_volumes, density)
+        {
+            let (span, key) = match (&s.velocity, &s.velocity_gradient) {
+                (Some(v), _)
+                    if !(0.5 * density * v.get_ref().iter().map(|x| x * x).sum::<f64>())
+                        .is_finite() =>
+                {
+                    (v.span(), "velocity")
+                }
+                (_, Some(g)) => (g.span(), "velocity_gradient"),
+                (Some(v), None) => (v.span(), "velocity"),
+                (None, None) => (span.clone(), "shape"),
+            };
+            return Err(ctx.error(
+                &span,
+                &sfield(key),
+                format!("{message} (the shape's particles are numbered from 0)"),
+            ));
         }
         fills.push(fill);
     }
@@ -1339,7 +1367,24 @@ fn initial_stress<const D: usize>(
             ),
         ));
     }
-    Ok(tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz))
+    let stress = tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+    if let MaterialModel::ElasticPlastic(m) = &material.model {
+        let (equivalent, yield_stress) = (
+            tlsph_math::von_mises(&stress),
+            m.strength.initial_yield_stress(),
+        );
+        if equivalent > yield_stress * (1.0 + tlsph_solver::INITIAL_YIELD_TOLERANCE) {
+            return Err(ctx.error(
+                &span,
+                field,
+                format!(
+                    "lies outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa (the first step would silently return it to the surface)",
+                    material.name
+                ),
+            ));
+        }
+    }
+    Ok(stress)
 }
 
 /// One filled shape of a body: the region its particles came from (its shape, within its
@@ -2063,6 +2108,14 @@ fn build_probe<const D: usize>(
                 format!("`{f}` does not exist in a {D}D scene"),
             ));
         }
+        if fields.contains(&parsed) {
+            // `stress_yx` is `stress_xy`: two equal columns would share one CSV header.
+            return Err(ctx.error(
+                &t.fields.span(),
+                &field("fields"),
+                format!("`{f}` is listed twice (as `{parsed}`)"),
+            ));
+        }
         fields.push(parsed);
     }
     if fields.is_empty() {
@@ -2217,9 +2270,14 @@ fn axis_index(name: &str) -> Option<usize> {
     ["x", "y", "z"].iter().position(|a| *a == name)
 }
 
+/// The longest plain name: a probe's becomes the file name `<name>.csv`, and file systems
+/// allow 255 bytes.
+const MAX_NAME_LENGTH: usize = 200;
+
 /// A probe name becomes `probes/<name>.csv`: only plain file names are allowed.
 fn is_safe_file_stem(name: &str) -> bool {
     !name.is_empty()
+        && name.len() <= MAX_NAME_LENGTH
         && !name.starts_with('.')
         && name
             .chars()

@@ -282,6 +282,13 @@ fn failure(
             format!("{} is not allowed: must be {}", e.value, e.expected),
         )
     };
+    // The limit models name their parameter after the quantity; the scene's key is `limit`.
+    let locate_limit = |e: MaterialError| {
+        locate(MaterialError {
+            parameter: "limit",
+            ..e
+        })
+    };
     let only = |allowed: &[&str]| -> Result<(), SceneError> {
         let given = [
             ("d", f.d.is_some()),
@@ -340,12 +347,12 @@ fn failure(
         "max-plastic-strain" => {
             only(&["limit"])?;
             let limit = f.limit.ok_or_else(|| err("limit", "is required".into()))?;
-            Ok(FailureModel::MaxPlasticStrain(MaxPlasticStrainFailure::new(limit).map_err(locate)?))
+            Ok(FailureModel::MaxPlasticStrain(MaxPlasticStrainFailure::new(limit).map_err(locate_limit)?))
         }
         "max-principal-stress" => {
             only(&["limit"])?;
             let limit = f.limit.ok_or_else(|| err("limit", "is required".into()))?;
-            Ok(FailureModel::MaxPrincipalStress(MaxStressFailure::new(limit).map_err(locate)?))
+            Ok(FailureModel::MaxPrincipalStress(MaxStressFailure::new(limit).map_err(locate_limit)?))
         }
         other => Err(err(
             "model",

@@ -57,6 +57,15 @@ interval = 0.01
 dir = "out"
 "#;
 
+/// [`PLATE_IMPACT`] cut to a few steps, for tests of the run folder.
+fn short_plate_impact() -> tlsph_io::Scene {
+    parse_scene(
+        &PLATE_IMPACT.replace("end_time = 2.0", "end_time = 0.05"),
+        "scene.toml",
+    )
+    .unwrap()
+}
+
 fn error_of(text: &str) -> tlsph_io::SceneError {
     parse_scene(text, "scene.toml").expect_err("scene must be rejected")
 }
@@ -132,6 +141,18 @@ fn impossible_values_are_named_with_field_and_line() {
             "simulation.kernel",
         ),
         ("dimension = 1", "dimension = 4", "simulation.dimension"),
+        // A field listed twice would give two equal CSV headers.
+        (
+            "\"displacement_x\"]",
+            "\"displacement_x\", \"velocity_x\"]",
+            "probe[target-mid].fields",
+        ),
+        // Finite, but ½ρV|v|² overflows: the run would take one step of Δt = 0 and stop.
+        (
+            "velocity = [0.1]",
+            "velocity = [1e200]",
+            "body[target].shape[0].velocity",
+        ),
         (
             "name = \"target-mid\"",
             "name = \"../escape\"",
@@ -177,17 +198,114 @@ fn a_folder_that_is_not_a_run_is_never_overwritten() {
     let dir = tmp.path().join("precious");
     fs::create_dir(&dir).unwrap();
     fs::write(dir.join("thesis.tex"), "keep me").unwrap();
-    let scene = parse_scene(
-        &PLATE_IMPACT.replace("end_time = 2.0", "end_time = 0.05"),
-        "scene.toml",
-    )
-    .unwrap();
+    let scene = short_plate_impact();
     let err = run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap_err();
     assert!(err.to_string().contains("refusing"), "{err}");
     assert_eq!(
         fs::read_to_string(dir.join("thesis.tex")).unwrap(),
         "keep me"
     );
+}
+
+#[test]
+fn the_run_never_deletes_a_sibling_folder_it_did_not_make() {
+    // `<dir>.old` and `<dir>.partial` are the swap's working names. Before, a user's `out.old`
+    // was deleted by the swap, and a `out.partial` of any origin by the next run.
+    let scene = short_plate_impact();
+    for sibling in ["out.old", "out.partial"] {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("out");
+        let theirs = tmp.path().join(sibling);
+        fs::create_dir(&theirs).unwrap();
+        fs::write(theirs.join("thesis.tex"), "keep me").unwrap();
+        let mut steps_seen = 0;
+        let err = run_scene_to_dir(&scene, &dir, &mut |_, _| steps_seen += 1).unwrap_err();
+        assert_eq!(steps_seen, 0, "refused only after the run: {err}");
+        assert!(err.to_string().contains(sibling), "{err}");
+        assert_eq!(
+            fs::read_to_string(theirs.join("thesis.tex")).unwrap(),
+            "keep me"
+        );
+        assert!(!dir.exists());
+    }
+    // A file named `out.old` is refused the same way (it would have stranded the results).
+    let tmp = tempfile::tempdir().unwrap();
+    fs::write(tmp.path().join("out.old"), "keep me").unwrap();
+    let err = run_scene_to_dir(&scene, &tmp.path().join("out"), &mut |_, _| {}).unwrap_err();
+    assert!(err.to_string().contains("out.old"), "{err}");
+}
+
+#[test]
+fn a_stale_working_folder_of_an_interrupted_run_is_replaced() {
+    let scene = short_plate_impact();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    // An interrupted run leaves its working folder with the marker file in it.
+    let stale = tmp.path().join("out.partial");
+    fs::create_dir(&stale).unwrap();
+    fs::write(stale.join(".tlsph-partial"), "").unwrap();
+    fs::write(stale.join("energy.csv"), "half-written").unwrap();
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    assert!(!stale.exists());
+    assert!(dir.join("summary.toml").is_file());
+    assert!(
+        !dir.join(".tlsph-partial").exists(),
+        "the marker is not part of a run folder"
+    );
+}
+
+#[test]
+fn a_swap_that_fails_keeps_both_results_and_says_where_they_are() {
+    let scene = short_plate_impact();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    let first_summary = fs::read_to_string(dir.join("summary.toml")).unwrap();
+    // During the second run a file appears at `out.old`: moving the previous results aside
+    // fails (a folder cannot be renamed onto a file).
+    let old = tmp.path().join("out.old");
+    let err = run_scene_to_dir(&scene, &dir, &mut |_, _| {
+        if !old.exists() {
+            fs::write(&old, "in the way").unwrap();
+        }
+    })
+    .unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.contains("out.partial") && message.contains("results are complete"),
+        "{message}"
+    );
+    // The previous results are untouched, the new ones complete in the working folder.
+    assert_eq!(
+        fs::read_to_string(dir.join("summary.toml")).unwrap(),
+        first_summary
+    );
+    let partial = tmp.path().join("out.partial");
+    let new_summary = fs::read_to_string(partial.join("summary.toml")).unwrap();
+    assert!(new_summary.contains("status = \"complete\""));
+    // The next run refuses rather than deleting the stranded results.
+    fs::remove_file(&old).unwrap();
+    let err = run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap_err();
+    assert!(err.to_string().contains("out.partial"), "{err}");
+    assert!(partial.join("summary.toml").is_file());
+}
+
+#[test]
+fn an_output_dir_without_a_folder_name_or_a_too_long_probe_name_is_refused_at_check() {
+    for dir in ["", ".", "results/.."] {
+        let text = PLATE_IMPACT.replace("dir = \"out\"", &format!("dir = {dir:?}"));
+        let e = error_of(&text);
+        assert_eq!(e.field, "output.dir", "{dir:?}: {e}");
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = parse_scene(PLATE_IMPACT, "scene.toml").unwrap();
+    let err = run_scene_to_dir(&scene, &tmp.path().join("."), &mut |_, _| {}).unwrap_err();
+    assert!(err.to_string().contains("folder name"), "{err}");
+    // `probes/<name>.csv` must fit a file system's 255-byte name.
+    let long = "p".repeat(300);
+    let e = error_of(&PLATE_IMPACT.replace("target-mid", &long));
+    assert_eq!(e.field, "probe.name", "{e}");
+    assert!(e.message.contains("at most 200"), "{e}");
 }
 
 #[test]
@@ -328,6 +446,21 @@ fn every_run_writes_a_stability_report_and_names_the_first_crossing() {
             .unwrap()
             .parse()
             .unwrap();
+        // One numbering: `steps` is the last step's number in stability.csv (always sampled).
+        let last_step: f64 = csv
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .nth(1)
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert_eq!(
+            summary["steps"].as_integer(),
+            Some(last_step as i64),
+            "{formulation}"
+        );
         let stability = summary["stability"].as_table().unwrap();
         assert_eq!(stability["stayed_inside"].as_bool(), Some(stays_inside));
         if !stays_inside {
@@ -438,6 +571,31 @@ fn initial_stress_errors_name_the_field_and_line() {
         .replace("cfl = 0.3", "cfl = 0.3\nstress_update = \"green-lagrange\"");
     let e = error_of(&gl);
     assert_eq!(e.field, "body[target].initial_stress", "{e}");
+    // Elastic–plastic, σ_y0 = 0.01: a uniaxial 0.02 lies outside the yield surface (before, the
+    // first step returned it to the surface without a word); 0.01 is on it and a large
+    // hydrostatic stress (von Mises 0) inside it.
+    let plastic = |stress: &str| {
+        PLATE_IMPACT
+            .replace(
+                "model = \"linear-elastic\"",
+                "model = \"elastic-plastic\"\nyield_stress = 0.01",
+            )
+            .replace("spacing = 0.01", &format!("spacing = 0.01\n{stress}"))
+    };
+    let outside = plastic("initial_stress = { xx = 0.02 }");
+    let e = error_of(&outside);
+    assert_eq!(e.field, "body[target].initial_stress", "{e}");
+    assert_eq!(e.line, Some(line_of(&outside, "xx = 0.02")), "{e}");
+    assert!(e.message.contains("outside the yield surface"), "{e}");
+    for inside in [
+        "initial_stress = { xx = 0.01 }",
+        "initial_stress = { xx = -5.0, yy = -5.0, zz = -5.0 }",
+    ] {
+        assert!(
+            parse_scene(&plastic(inside), "scene.toml").is_ok(),
+            "{inside}"
+        );
+    }
 }
 
 #[test]

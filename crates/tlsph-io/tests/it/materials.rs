@@ -566,9 +566,19 @@ fn failure_models_parse_and_their_errors_are_located() {
     };
     assert!(p.failure.is_some());
     for (failure, field) in [
+        // The scene's key is `limit`, whatever the quantity it limits.
         (
             "{ model = \"max-plastic-strain\", limit = -1.0 }",
-            "failure.max_plastic_strain",
+            "failure.limit",
+        ),
+        (
+            "{ model = \"max-principal-stress\", limit = 0.0 }",
+            "failure.limit",
+        ),
+        // D1 + D2 = 0: no positive failure strain anywhere.
+        (
+            "{ model = \"johnson-cook\", d = [0.0, 0.0, 0.0, 0.0, 0.0], reference_strain_rate = 1.0, room_temperature = 293.0, melt_temperature = 1356.0 }",
+            "failure.d",
         ),
         ("{ model = \"max-plastic-strain\" }", "failure.limit"),
         (
