@@ -1,15 +1,60 @@
-//! One TLSPH step on a 3D elastic block of about 100 000 particles, with 1 and 2 threads.
-//! Criterion's throughput is set to the particle count, so "elements/s" is particle-steps/s.
+//! One TLSPH step on a 3D block of about 100 000 particles, with 1 and 2 threads: elastic in
+//! every formulation, and Johnson–Cook with a Mie–Grüneisen EOS (return map, EOS pressure and
+//! the EOS's isentropic sound speed in the time step). Criterion's throughput is set to the
+//! particle count, so "elements/s" is particle-steps/s.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use tlsph_materials::LinearElastic;
+use tlsph_materials::eos::MieGruneisenParameters;
+use tlsph_materials::strength::JohnsonCookStrengthParameters;
+use tlsph_materials::{JohnsonCookStrength, LinearElastic, MieGruneisen};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    BodyDescription, Formulation, KernelKind, MaterialDescription, MaterialModel, Model,
-    Simulation, SimulationConfig, StressUpdate,
+    BodyDescription, ElasticPlastic, Formulation, KernelKind, MaterialDescription, MaterialModel,
+    Model, PressureModel, Simulation, SimulationConfig, StrengthModel, StressUpdate,
 };
 
-fn block(n: usize, formulation: Formulation) -> Simulation<3> {
+/// Steel (E = 210 GPa, ν = 0.3), elastic.
+fn elastic_steel() -> MaterialModel {
+    MaterialModel::LinearElastic(LinearElastic::new(210e9, 0.3).unwrap())
+}
+
+/// 4340 steel: Johnson–Cook strength (published constants) and a Mie–Grüneisen EOS.
+fn johnson_cook_steel() -> MaterialModel {
+    let strength = JohnsonCookStrength::new(JohnsonCookStrengthParameters {
+        a: 792e6,
+        b: 510e6,
+        n: 0.26,
+        c: 0.014,
+        m: 1.03,
+        reference_strain_rate: 1.0,
+        room_temperature: 293.0,
+        melt_temperature: 1793.0,
+    })
+    .unwrap();
+    let eos = MieGruneisen::new(MieGruneisenParameters {
+        reference_density: 7850.0,
+        sound_speed: 4569.0,
+        s1: 1.49,
+        s2: 0.0,
+        s3: 0.0,
+        gamma0: 2.17,
+        a: 0.0,
+    })
+    .unwrap();
+    MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic: LinearElastic::new(210e9, 0.3).unwrap(),
+        strength: StrengthModel::JohnsonCook {
+            model: strength,
+            iterate: true,
+        },
+        pressure: PressureModel::Eos(eos.into()),
+        min_pressure: None,
+        thermal: None,
+        failure: None,
+    })
+}
+
+fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulation<3> {
     let dx = 1e-3;
     let mut positions = Vec::with_capacity(n * n * n);
     for i in 0..n {
@@ -36,7 +81,7 @@ fn block(n: usize, formulation: Formulation) -> Simulation<3> {
         materials: vec![MaterialDescription {
             name: "steel".into(),
             density: 7850.0,
-            model: MaterialModel::LinearElastic(LinearElastic::new(210e9, 0.3).unwrap()),
+            model: material,
         }],
         bodies: vec![BodyDescription {
             name: "block".into(),
@@ -72,13 +117,30 @@ fn bench_step(c: &mut Criterion) {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let mut sim = pool.install(|| block(n, formulation));
+            let mut sim = pool.install(|| block(n, formulation, elastic_steel()));
             group.bench_with_input(
                 BenchmarkId::new(formulation.name(), format!("{threads}-threads")),
                 &threads,
                 |b, _| b.iter(|| pool.install(|| sim.step().expect("stable step"))),
             );
         }
+    }
+    group.finish();
+    let mut group = c.benchmark_group("johnson_cook_mie_gruneisen_step_3d_block");
+    group.throughput(Throughput::Elements((n * n * n) as u64));
+    group.sample_size(10);
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let formulation = Formulation::TotalLagrangianCorrected;
+        let mut sim = pool.install(|| block(n, formulation, johnson_cook_steel()));
+        group.bench_with_input(
+            BenchmarkId::new(formulation.name(), format!("{threads}-threads")),
+            &threads,
+            |b, _| b.iter(|| pool.install(|| sim.step().expect("stable step"))),
+        );
     }
     group.finish();
 }
