@@ -1273,16 +1273,14 @@ fn build_body<const D: usize>(
         if let Err(message) =
             tlsph_solver::check_kinetic_energy(&velocities[first..], &shape_volumes, density)
         {
+            // Blame the gradient only if the uniform part alone is fine.
+            let uniform_fine =
+                tlsph_solver::check_kinetic_energy(&[fill.velocity], &shape_volumes[..1], density)
+                    .is_ok();
             let (span, key) = match (&s.velocity, &s.velocity_gradient) {
-                (Some(v), _)
-                    if !(0.5 * density * v.get_ref().iter().map(|x| x * x).sum::<f64>())
-                        .is_finite() =>
-                {
-                    (v.span(), "velocity")
-                }
-                (_, Some(g)) => (g.span(), "velocity_gradient"),
-                (Some(v), None) => (v.span(), "velocity"),
-                (None, None) => (span.clone(), "shape"),
+                (_, Some(g)) if uniform_fine => (g.span(), "velocity_gradient"),
+                (Some(v), _) => (v.span(), "velocity"),
+                _ => (span.clone(), "shape"),
             };
             return Err(ctx.error(
                 &span,
@@ -1368,21 +1366,16 @@ fn initial_stress<const D: usize>(
         ));
     }
     let stress = tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    if let MaterialModel::ElasticPlastic(m) = &material.model {
-        let (equivalent, yield_stress) = (
-            tlsph_math::von_mises(&stress),
-            m.strength.initial_yield_stress(),
-        );
-        if equivalent > yield_stress * (1.0 + tlsph_solver::INITIAL_YIELD_TOLERANCE) {
-            return Err(ctx.error(
-                &span,
-                field,
-                format!(
-                    "lies outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa (the first step would silently return it to the surface)",
-                    material.name
-                ),
-            ));
-        }
+    if let Some((equivalent, yield_stress)) = material.model.outside_initial_yield_surface(&stress)
+    {
+        return Err(ctx.error(
+            &span,
+            field,
+            format!(
+                "lies outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa (the first step would silently return it to the surface)",
+                material.name
+            ),
+        ));
     }
     Ok(stress)
 }

@@ -3,7 +3,10 @@
 //! the EOS's isentropic sound speed in the time step). Criterion's throughput is set to the
 //! particle count, so "elements/s" is particle-steps/s.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{
+    criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput,
+};
 use tlsph_materials::eos::MieGruneisenParameters;
 use tlsph_materials::strength::JohnsonCookStrengthParameters;
 use tlsph_materials::{JohnsonCookStrength, LinearElastic, MieGruneisen};
@@ -100,6 +103,26 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
     sim
 }
 
+/// Benchmarks one step of an n³ block of `material` on a pool of `threads` threads.
+fn bench_block(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    n: usize,
+    formulation: Formulation,
+    threads: usize,
+    material: fn() -> MaterialModel,
+) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let mut sim = pool.install(|| block(n, formulation, material()));
+    group.bench_with_input(
+        BenchmarkId::new(formulation.name(), format!("{threads}-threads")),
+        &threads,
+        |b, _| b.iter(|| pool.install(|| sim.step().expect("stable step"))),
+    );
+}
+
 fn bench_step(c: &mut Criterion) {
     let n = 46; // 46³ = 97 336 particles
     let mut group = c.benchmark_group("tl_step_3d_block");
@@ -113,16 +136,7 @@ fn bench_step(c: &mut Criterion) {
         Formulation::UpdatedLagrangian,
     ] {
         for threads in [1usize, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let mut sim = pool.install(|| block(n, formulation, elastic_steel()));
-            group.bench_with_input(
-                BenchmarkId::new(formulation.name(), format!("{threads}-threads")),
-                &threads,
-                |b, _| b.iter(|| pool.install(|| sim.step().expect("stable step"))),
-            );
+            bench_block(&mut group, n, formulation, threads, elastic_steel);
         }
     }
     group.finish();
@@ -130,17 +144,8 @@ fn bench_step(c: &mut Criterion) {
     group.throughput(Throughput::Elements((n * n * n) as u64));
     group.sample_size(10);
     for threads in [1usize, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
         let formulation = Formulation::TotalLagrangianCorrected;
-        let mut sim = pool.install(|| block(n, formulation, johnson_cook_steel()));
-        group.bench_with_input(
-            BenchmarkId::new(formulation.name(), format!("{threads}-threads")),
-            &threads,
-            |b, _| b.iter(|| pool.install(|| sim.step().expect("stable step"))),
-        );
+        bench_block(&mut group, n, formulation, threads, johnson_cook_steel);
     }
     group.finish();
 }

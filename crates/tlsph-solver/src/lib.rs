@@ -38,10 +38,8 @@ pub use model::{
     FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
-    WallDescription,
+    WallDescription, INITIAL_YIELD_TOLERANCE,
 };
-pub use simulation::{
-    check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport, INITIAL_YIELD_TOLERANCE,
-};
+pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;
 pub use updated_lagrangian::{CurrentPairs, SKIN_FRACTION};

@@ -261,7 +261,28 @@ impl MaterialModel {
     pub fn has_temperature(&self) -> bool {
         matches!(self, MaterialModel::ElasticPlastic(m) if m.thermal.is_some())
     }
+
+    /// For an elastic–plastic material and a starting Cauchy stress outside its initial yield
+    /// surface (von Mises stress above σ_y(ε̄p = 0) by more than [`INITIAL_YIELD_TOLERANCE`]),
+    /// the pair (von Mises stress, initial yield stress) \[Pa\]; `None` when the stress is
+    /// admissible or the material has no yield surface.
+    pub fn outside_initial_yield_surface(
+        &self,
+        stress: &tlsph_math::Tensor3,
+    ) -> Option<(f64, f64)> {
+        let MaterialModel::ElasticPlastic(m) = self else {
+            return None;
+        };
+        let equivalent = tlsph_math::von_mises(stress);
+        let yield_stress = m.strength.initial_yield_stress();
+        (equivalent > yield_stress * (1.0 + INITIAL_YIELD_TOLERANCE))
+            .then_some((equivalent, yield_stress))
+    }
 }
+
+/// Relative tolerance on the yield surface for a starting stress: a von Mises stress up to
+/// σ_y0 (1 + 1e-9) counts as on the surface (a value copied from a table, rounded in print).
+pub const INITIAL_YIELD_TOLERANCE: f64 = 1e-9;
 
 /// A named material.
 #[derive(Debug, Clone, PartialEq)]

@@ -28,10 +28,6 @@ use tlsph_contact::{PenaltyLaw, PotentialLaw};
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
-
-/// Relative tolerance on the yield surface for a starting stress: a von Mises stress up to
-/// σ_y0 (1 + 1e-9) counts as on the surface (a value copied from a table, rounded in print).
-pub const INITIAL_YIELD_TOLERANCE: f64 = 1e-9;
 /// Static facts about one body of a running simulation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyInfo {
@@ -1221,7 +1217,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Sets a uniform initial Cauchy stress σ0 (symmetric, tension positive; for an
     /// elastic–plastic material on or inside its initial yield surface, to
-    /// [`INITIAL_YIELD_TOLERANCE`]) on every particle
+    /// [`crate::INITIAL_YIELD_TOLERANCE`]) on every particle
     /// of body `body` before the first step, e.g. a prestressed state (problems.md R-P5). The
     /// rate-form stress updates carry it on; the Green–Lagrange path computes stress from F
     /// alone, an equation of state computes pressure from J alone and a damage model keeps its
@@ -1259,17 +1255,11 @@ impl<const D: usize> Simulation<D> {
                 info.name
             ));
         }
-        if let MaterialModel::ElasticPlastic(m) = material {
-            let (equivalent, yield_stress) = (
-                tlsph_math::von_mises(&stress),
-                m.strength.initial_yield_stress(),
-            );
-            if equivalent > yield_stress * (1.0 + INITIAL_YIELD_TOLERANCE) {
-                return refuse(format!(
-                    "body `{}`: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
-                    info.name
-                ));
-            }
+        if let Some((equivalent, yield_stress)) = material.outside_initial_yield_surface(&stress) {
+            return refuse(format!(
+                "body `{}`: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
+                info.name
+            ));
         }
         let range = info.range.clone();
         self.particles.stress[range.clone()].fill(stress);
@@ -1433,12 +1423,9 @@ impl<const D: usize> Simulation<D> {
 
     /// Whether any body tracks a temperature (adiabatic heating declared).
     pub fn has_temperature(&self) -> bool {
-        self.plastic.iter().any(|s| {
-            matches!(
-                s,
-                PlasticState::StrainTemperature(_) | PlasticState::StrainTemperatureDamage(_)
-            )
-        })
+        self.bodies
+            .iter()
+            .any(|b| self.materials[b.material].has_temperature())
     }
 
     /// Whether any body carries an effective plastic strain.
