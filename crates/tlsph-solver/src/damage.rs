@@ -290,8 +290,14 @@ fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
                 let (cofactor, j_ref) = cofactor_and_determinant(&f);
                 let j0 = step.reference_jacobian.at(k);
                 let (j, j_half) = (j_ref * j0, j_half * j0);
-                // Artificial pressure on the force-driving stress only (numerics.md §10.2).
-                let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
+                // Artificial pressure on the force-driving stress only (numerics.md §10.2). A
+                // particle failing now leaves this step's force sums, so neither its stress nor
+                // q enters its last energy increment (they would not pair with any force work).
+                let q = if *status == FAILED_NOW {
+                    0.0
+                } else {
+                    viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length)
+                };
                 *energy += dt * j_half / rho0
                     * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
                         .component_mul(&d)

@@ -478,11 +478,7 @@ fn update<
             let ret = strength.return_map(&trial, shear, point.plastic_strain(), rate, temperature);
             let mut sigma_new = ret.deviator - Tensor3::identity() * pressure;
             // Artificial pressure on the force-driving stress only (numerics.md §10.2).
-            let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
-            *energy += dt * j_half / rho0
-                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                    .component_mul(&d)
-                    .sum();
+            let mut q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
             // Plastic work per unit mass at the end-of-step flow stress: σ̄ Δε̄p / ρ.
             let flow = (1.5 * ret.deviator.component_mul(&ret.deviator).sum()).sqrt();
             point.heat(flow * ret.plastic_strain_increment * j / rho0, thermal);
@@ -502,9 +498,18 @@ fn update<
                     },
                 )
             {
+                // A particle failing now leaves this step's force sums: the forces at t^n see
+                // neither its stress nor its artificial pressure, so its last energy increment
+                // must not either (the half of σ^n in the increment pairs with the work of the
+                // forces at t^n).
                 point.fail();
                 sigma_new = Tensor3::zeros();
+                q = 0.0;
             }
+            *energy += dt * j_half / rho0
+                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                    .component_mul(&d)
+                    .sum();
             *sigma = sigma_new;
             *jac = j;
             *pk1 = if j_ref != 0.0 && j_ref.is_finite() {

@@ -19,7 +19,7 @@ use crate::reference::ReferenceState;
 use crate::stability::NeighbourDistances;
 use crate::step::{
     gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
-    ConstitutiveStep, InitialReference, NoViscosity, ReferenceJacobian,
+    ConstitutiveStep, InitialReference, NoViscosity, ReferenceJacobian, MIN_PARTICLES_PER_TASK,
 };
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
@@ -534,7 +534,7 @@ impl<const D: usize> Simulation<D> {
         }
         self.ghosts.refresh_stress(&mut self.particles);
         if !self.removed.is_empty() {
-            self.remove_newly_failed();
+            self.remove_newly_failed(dt);
         }
         if let Some(i) = first_index_where(&self.particles.jacobian, |j| j.is_nan() || *j <= 0.0) {
             let jacobian = self.particles.jacobian[i];
@@ -732,7 +732,6 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// Takes the particles that failed in this step's constitutive update out of every sum.
     /// Makes the current configuration the reference (numerics.md §4 `[C]`, `reference.rs`):
     /// X := x, u := 0, V := m J / ρ0, F := I, J0 := J; ghosts, bonds, corrected gradients and
     /// the effects' bond data are rebuilt on the new reference. The state at t^n (velocities,
@@ -808,7 +807,9 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    fn remove_newly_failed(&mut self) {
+    /// Takes the particles that failed in this step's constitutive update (of a step of `dt`)
+    /// out of every sum, before the forces at t^n are gathered.
+    fn remove_newly_failed(&mut self, dt: f64) {
         let mut newly = Vec::new();
         for (b, info) in self.bodies.iter().enumerate() {
             newly.extend(
@@ -832,6 +833,7 @@ impl<const D: usize> Simulation<D> {
             }
         }
         if let Some(updated) = &mut self.updated {
+            updated.book_removed_pairs(&mut self.particles, &self.removed, dt);
             // The failed particles leave this step's force sums already: the pair list at x^n
             // is rebuilt without them (a non-finite position, reported by the step's checks,
             // leaves it to the next step).
@@ -853,34 +855,53 @@ impl<const D: usize> Simulation<D> {
             self.config.formulation == Formulation::TotalLagrangianCorrected,
             &self.ghosts,
         );
-        self.carry_jacobians();
+        self.regather_after_failure(dt);
     }
 
-    /// After a bond rebuild (failures): for every surviving particle whose neighbour set
-    /// changed, J / det F ← (J / det F)·det F_old / det F_new at the same displacements u^n, so
-    /// the density the EOS reads stays continuous (DJ/Dt = J tr D, numerics.md §4.3) instead of
-    /// jumping with the kernel estimate; a jump would change p(J, e) without any p dV work
-    /// booked in e. F^n of the old bonds is still in `deformation_gradient` (gathered this
-    /// step); the next gather replaces it.
-    fn carry_jacobians(&mut self) {
+    /// After a bond rebuild (failures), for every surviving particle whose gradients changed:
+    /// - J / det F ← (J / det F)·det F_old / det F_new at the same displacements u^n, so the
+    ///   density the EOS reads stays continuous (DJ/Dt = J tr D, numerics.md §4.3) instead of
+    ///   jumping with the kernel estimate; a jump would change p(J, e) without any p dV work
+    ///   booked in e;
+    /// - e ← e + ½Δt (V0/m) P^n : (Ḟ_new − Ḟ_old), with both rates from the same v^{n−½}. The
+    ///   increment of e just taken paired P^n with the old bonds' Ḟ, but the forces at t^n
+    ///   act through the new bonds: the discrete identity Σ V0 P:Ḟ = −Σ m a·v (numerics.md
+    ///   §4.5–4.6) holds for one set of gradients, so without this the total energy jumps at
+    ///   every removal step.
+    ///
+    /// F^n and Ḟ^{n−½} of the old bonds are still in the particle arrays (gathered this step);
+    /// they are replaced by the new bonds' values.
+    fn regather_after_failure(&mut self, dt: f64) {
         if self.jacobian_carry.is_empty() || self.updated.is_some() {
             return;
         }
         let (bonds, removed) = (&self.bonds, &self.removed);
         let p = &mut self.particles;
-        let u = &p.displacements;
+        let (u, v, pk1) = (&p.displacements, &p.velocities, &p.pk1);
+        let (volumes0, masses) = (&p.volumes0, &p.masses);
         self.jacobian_carry
             .par_iter_mut()
             .zip(p.deformation_gradient.par_iter_mut())
+            .zip(p.deformation_rate.par_iter_mut())
+            .zip(p.internal_energy.par_iter_mut())
             .enumerate()
-            .for_each(|(i, (carry, f))| {
+            .with_min_len(MIN_PARTICLES_PER_TASK)
+            .for_each(|(i, (((carry, f), f_dot), energy))| {
                 if removed[i] {
                     return;
                 }
                 let mut f_new = tlsph_math::Tensor::<D>::identity();
+                let mut f_dot_new = tlsph_math::Tensor::<D>::zeros();
                 let r = bonds.range(i);
                 for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
-                    f_new += tlsph_math::outer(&(u[j as usize] - u[i]), g);
+                    let j = j as usize;
+                    f_new += tlsph_math::outer(&(u[j] - u[i]), g);
+                    f_dot_new += tlsph_math::outer(&(v[j] - v[i]), g);
+                }
+                if f_dot_new != *f_dot {
+                    *energy += 0.5 * dt * volumes0[i] / masses[i]
+                        * pk1[i].component_mul(&(f_dot_new - *f_dot)).sum();
+                    *f_dot = f_dot_new;
                 }
                 if f_new == *f {
                     return;

@@ -321,10 +321,55 @@ impl<const D: usize> UpdatedLagrangian<D> {
             .enumerate()
             .with_min_len(MIN_PARTICLES_PER_TASK)
             .for_each(|(i, s)| {
-                let inv_rho0 = p.volumes0[i] / p.masses[i];
-                *s = p.pk1[i]
-                    * p.deformation_gradient[i].transpose()
-                    * (p.jacobian[i] * inv_rho0 * inv_rho0);
+                *s = stress_over_density2(
+                    &p.pk1[i],
+                    &p.deformation_gradient[i],
+                    p.jacobian[i],
+                    p.volumes0[i] / p.masses[i],
+                )
+            });
+    }
+
+    /// Energy of a removal step, before the list is rebuilt without the particles `removed`
+    /// (failed in this step's constitutive update of a step of `dt`): each survivor's last
+    /// increment e += ½Δt σ^n:D/ρ paired σ^n with a velocity gradient that still held its
+    /// pairs with them, while the forces at t^n will not. The discrete identity
+    /// Σ_I m_I (σ_I/ρ_I²) : Σ_J m_J (v_J − v_I) ⊗ ∇_I W_IJ = −Σ_I m_I a_I·v_I (numerics.md §3)
+    /// holds for one pair set, so the dropped pairs' share is taken back:
+    /// e_I −= ½Δt (σ_I/ρ_I²) : Σ_{K removed} m_K (v_K − v_I) ⊗ ∇_I W_IK.
+    pub fn book_removed_pairs(&self, p: &mut Particles<D>, removed: &[bool], dt: f64) {
+        let pairs = &self.pairs;
+        let Particles {
+            velocities: v,
+            masses,
+            volumes0,
+            pk1,
+            deformation_gradient: f,
+            jacobian,
+            internal_energy,
+            ..
+        } = p;
+        internal_energy[..self.n_real]
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(MIN_PARTICLES_PER_TASK)
+            .for_each(|(i, energy)| {
+                if removed[i] {
+                    return;
+                }
+                let mut dropped = Tensor::<D>::zeros();
+                let r = pairs.range(i);
+                for (&k, g) in pairs.neighbours[r.clone()].iter().zip(&pairs.gradient[r]) {
+                    let k = k as usize;
+                    if removed[k] {
+                        dropped += (v[k] - v[i]) * g.transpose() * masses[k];
+                    }
+                }
+                if dropped != Tensor::<D>::zeros() {
+                    let s =
+                        stress_over_density2(&pk1[i], &f[i], jacobian[i], volumes0[i] / masses[i]);
+                    *energy -= 0.5 * dt * s.component_mul(&dropped).sum();
+                }
             });
     }
 
@@ -378,4 +423,14 @@ impl<const D: usize> UpdatedLagrangian<D> {
                 *out = vi + sum * epsilon;
             });
     }
+}
+
+/// σ/ρ² of a force-driving stress from P = J σ F⁻ᵀ: P Fᵀ J / ρ0², with `inv_rho0` = V0/m.
+fn stress_over_density2<const D: usize>(
+    pk1: &Tensor<D>,
+    f: &Tensor<D>,
+    jacobian: f64,
+    inv_rho0: f64,
+) -> Tensor<D> {
+    pk1 * f.transpose() * (jacobian * inv_rho0 * inv_rho0)
 }
