@@ -105,6 +105,15 @@ impl DamageState {
         }
     }
 
+    /// Marks local particle `k` as failed and removed outside a constitutive update (a particle
+    /// left without neighbours); nothing for bodies without damage.
+    pub fn mark_removed(&mut self, k: usize) {
+        if let DamageState::Damaged(b) = self {
+            b.status[k] = REMOVED;
+            b.damage[k] = 1.0;
+        }
+    }
+
     /// Marks the particles that failed in the last update as removed and returns their local
     /// indices (empty for bodies without damage).
     pub fn take_newly_failed(&mut self) -> Vec<usize> {

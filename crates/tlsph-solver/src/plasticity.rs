@@ -99,6 +99,16 @@ impl PlasticState {
         }
     }
 
+    /// Marks local particle `k` as failed and removed outside a constitutive update (a particle
+    /// left without neighbours); nothing for bodies without a failure model.
+    pub fn mark_removed(&mut self, k: usize) {
+        match self {
+            PlasticState::StrainDamage(v) => v[k][2] = 2.0,
+            PlasticState::StrainTemperatureDamage(v) => v[k][3] = 2.0,
+            _ => {}
+        }
+    }
+
     /// Temperature of local particle `k`, if the body tracks one.
     pub fn temperature(&self, k: usize) -> Option<f64> {
         match self {

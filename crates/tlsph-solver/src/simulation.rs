@@ -823,15 +823,7 @@ impl<const D: usize> Simulation<D> {
         if newly.is_empty() {
             return;
         }
-        for &i in &newly {
-            self.removed[i] = true;
-        }
-        // A failed particle's mirror images leave the sums with it.
-        for (k, &parent) in self.ghosts.parent.iter().enumerate() {
-            if self.removed[parent] {
-                self.removed[self.ghosts.first + k] = true;
-            }
-        }
+        self.mark_removed(&newly);
         if let Some(updated) = &mut self.updated {
             updated.book_removed_pairs(&mut self.particles, &self.removed, dt);
             // The failed particles leave this step's force sums already: the pair list at x^n
@@ -843,11 +835,33 @@ impl<const D: usize> Simulation<D> {
             }
         }
         self.failed_count += newly.len();
+        self.remove_bonds_of(&newly);
+        self.regather_after_failure(dt);
+        if self.updated.is_none() {
+            self.fail_orphans();
+        }
+    }
+
+    /// Flags `failed` (real particles) and their mirror images as out of every sum.
+    fn mark_removed(&mut self, failed: &[usize]) {
+        for &i in failed {
+            self.removed[i] = true;
+        }
+        // A failed particle's mirror images leave the sums with it.
+        for (k, &parent) in self.ghosts.parent.iter().enumerate() {
+            if self.removed[parent] {
+                self.removed[self.ghosts.first + k] = true;
+            }
+        }
+    }
+
+    /// Takes the reference bonds of `failed` out and rebuilds their survivors' gradients.
+    fn remove_bonds_of(&mut self, failed: &[usize]) {
         let bodies = &self.bodies;
         let kernels = &self.kernels;
         let body_of = |i: usize| body_index(bodies, i);
         self.bonds.remove_failed(
-            &newly,
+            failed,
             &self.removed,
             &self.particles.positions0,
             &self.particles.volumes0,
@@ -855,7 +869,39 @@ impl<const D: usize> Simulation<D> {
             self.config.formulation == Formulation::TotalLagrangianCorrected,
             &self.ghosts,
         );
-        self.regather_after_failure(dt);
+    }
+
+    /// TLSPH: a surviving particle whose reference neighbours have all failed is a lone point
+    /// mass. Nothing can strain it any more, so a stress it kept would stay frozen for the rest
+    /// of the run; it fails with them instead (numerics.md §9.3: no stress, mass and momentum
+    /// kept, its internal energy moves to `deleted_particles`). Its last energy increment was
+    /// already re-paired with its empty gradient sum by [`Self::regather_after_failure`].
+    /// Removing it changes no surviving particle's bonds, so this never cascades.
+    fn fail_orphans(&mut self) {
+        let (bonds, removed) = (&self.bonds, &self.removed);
+        let orphans: Vec<usize> = (0..self.n_particles())
+            .filter(|&i| {
+                let neighbours = bonds.neighbours_of(i);
+                !removed[i]
+                    && !neighbours.is_empty()
+                    && neighbours.iter().all(|&j| removed[j as usize])
+            })
+            .collect();
+        if orphans.is_empty() {
+            return;
+        }
+        for &i in &orphans {
+            let b = body_index(&self.bodies, i);
+            let k = i - self.bodies[b].range.start;
+            self.plastic[b].mark_removed(k);
+            self.damage[b].mark_removed(k);
+            self.particles.stress[i] = tlsph_math::Tensor3::zeros();
+            self.particles.pk1[i] = tlsph_math::Tensor::<D>::zeros();
+        }
+        self.mark_removed(&orphans);
+        self.failed_count += orphans.len();
+        self.remove_bonds_of(&orphans);
+        self.ghosts.refresh_stress(&mut self.particles);
     }
 
     /// After a bond rebuild (failures), for every surviving particle whose gradients changed:

@@ -337,3 +337,59 @@ fn a_starting_stress_outside_the_yield_surface_is_refused() {
         .set_initial_stress(0, Tensor3::identity() * -1e9)
         .is_ok());
 }
+
+#[test]
+fn a_particle_whose_neighbours_all_fail_fails_with_them() {
+    // A 1D bar prestressed in tension whose last two particles are launched outward at 0.2 c:
+    // the bar tears at particles 97 and 98, and particle 99 (bonded to 97 and 98 only) is left
+    // with no neighbour, a lone point mass that can carry no stress. Before the fix it kept
+    // the stress it had at that instant (σ_xx = 0.013) for the rest of the run and in every
+    // output, though nothing could change it any more.
+    use tlsph_materials::MaxPlasticStrainFailure;
+    use tlsph_solver::FailureModel;
+    let dx = 0.01;
+    let positions = lattice([100], dx);
+    let mut m = model(
+        positions,
+        dx,
+        |x| Vector::<1>::new(if x[0] > 0.975 { 0.2 } else { 0.0 }),
+        Setup {
+            end_time: 0.3,
+            ..Setup::default()
+        },
+    );
+    m.materials[0].model = MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic: LinearElastic::new(0.9, 0.2).unwrap(),
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: None,
+        failure: Some(FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(0.05).unwrap(),
+        )),
+    });
+    let mut prestress = Tensor3::zeros();
+    prestress[(0, 0)] = 0.005;
+    m.bodies[0].initial_stress = Some(prestress);
+    let mut sim = Simulation::new(m).unwrap();
+    sim.run(|_, _| {}).unwrap();
+    let last = sim.n_particles() - 1;
+    assert!(sim.is_failed(last - 1) && sim.is_failed(last - 2));
+    // Every particle still carrying stress has a surviving neighbour to carry it with.
+    for i in 0..sim.n_particles() {
+        let alive = sim
+            .bonds()
+            .neighbours_of(i)
+            .iter()
+            .any(|&j| !sim.is_failed(j as usize));
+        if !sim.is_failed(i) {
+            assert!(
+                alive,
+                "particle {i} has no surviving neighbour but has not failed"
+            );
+        } else {
+            assert_eq!(sim.stresses()[i], Tensor3::zeros(), "particle {i}");
+        }
+    }
+    assert!(sim.is_failed(last));
+}
