@@ -55,6 +55,7 @@ fn main() -> ExitCode {
                     if probes == 1 { "" } else { "s" },
                     s.end_time()
                 );
+                println!("{}", s.overview());
                 ExitCode::SUCCESS
             }
             Err(e) => {

@@ -111,7 +111,21 @@ fn check_reports_the_particle_count() {
     fs::write(&scene, SCENE).unwrap();
     let out = tlsph().arg("check").arg(&scene).output().unwrap();
     assert!(out.status.success());
-    assert!(String::from_utf8_lossy(&out.stdout).contains("150 particles"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("150 particles"), "{stdout}");
+    // Then one line per body and the run's estimated size: M = 1 and ρ = 1 give c = 1, so the
+    // first step is C h / c = 0.3 × 0.012 and 0.1 takes 28 such steps.
+    assert!(
+        stdout.contains(
+            "body `target`: 150 particles of `plate`, h 1.2000e-2, wave speed 1.0000e0, \
+             fastest particle 0.0000e0, first step 3.6000e-3"
+        ),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("about 28 steps at the first step (4.20e3 particle-steps)"),
+        "{stdout}"
+    );
 }
 
 #[test]

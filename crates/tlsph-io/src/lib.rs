@@ -2,6 +2,7 @@
 //! files. Scene files are documented for users in `docs/scene-format.md`.
 
 mod geometry;
+mod overview;
 pub mod particle_map;
 pub mod plot;
 mod run;
@@ -11,6 +12,7 @@ mod scene_material;
 pub mod vtk;
 
 pub use geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape, VOLUME_SUBSAMPLES};
+pub use overview::{BodyOverview, SceneOverview};
 pub use run::{
     check_output_dir, frame_of, run_model, run_scene, run_scene_to_dir, run_scene_with_frames,
     write_csv, FrameSink, Intervals, ProbeHistory, Progress, RunError, RunRecord,

@@ -35,7 +35,7 @@ pub use ghosts::MIN_PLANE_DISTANCE;
 pub use model::{
     ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
     ContactDescription, DamageModel, EffectsDescription, ElasticDamage, ElasticPlastic,
-    FailureModel, Formulation, MaterialDescription, MaterialModel, Model,
+    FailureModel, Formulation, InitialTimeStep, MaterialDescription, MaterialModel, Model,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
     WallDescription, INITIAL_YIELD_TOLERANCE,

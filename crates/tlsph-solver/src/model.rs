@@ -295,6 +295,27 @@ pub struct MaterialDescription {
     pub model: MaterialModel,
 }
 
+impl MaterialDescription {
+    /// Wave speed at the reference state c0 = sqrt(M/ρ0), M = K + 4G/3 with an equation of
+    /// state's reference bulk modulus where one is declared (numerics.md §7; R 5.69).
+    pub fn reference_wave_speed(&self) -> f64 {
+        (self.model.longitudinal_modulus() / self.density).sqrt()
+    }
+}
+
+/// The CFL step a body allows at the start of a run (see [`Model::initial_time_steps`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InitialTimeStep {
+    /// Smoothing length h = `smoothing_factor` · spacing \[length\].
+    pub smoothing_length: f64,
+    /// [`MaterialDescription::reference_wave_speed`] of the body's material \[length/time\].
+    pub wave_speed: f64,
+    /// Largest initial particle speed |v| \[length/time\].
+    pub fastest_particle: f64,
+    /// C h / (c0 + |v|max) (R 5.69 at J = 1) \[time\].
+    pub time_step: f64,
+}
+
 /// One body: a set of particles bonded to each other in the reference configuration.
 /// Different bodies never interact (contact comes later).
 #[derive(Debug, Clone, PartialEq)]
@@ -576,6 +597,26 @@ pub struct Model<const D: usize> {
 }
 
 impl<const D: usize> Model<D> {
+    /// Per body, the CFL step C h/(c0 + |v|max) it allows at the start (R 5.69 at J = 1,
+    /// before anything is compressed). The smallest of them is the first step the solver takes
+    /// unless an effect (contact stiffness) votes lower.
+    pub fn initial_time_steps(&self) -> Vec<InitialTimeStep> {
+        self.bodies
+            .iter()
+            .map(|body| {
+                let smoothing_length = self.config.smoothing_factor * body.spacing;
+                let wave_speed = self.materials[body.material].reference_wave_speed();
+                let fastest_particle = body.velocities.iter().map(|v| v.norm()).fold(0.0, f64::max);
+                InitialTimeStep {
+                    smoothing_length,
+                    wave_speed,
+                    fastest_particle,
+                    time_step: self.config.cfl * smoothing_length / (wave_speed + fastest_particle),
+                }
+            })
+            .collect()
+    }
+
     /// Kernel interaction group of body `body` (updated-Lagrangian formulation): the declared
     /// group, else the body's material index. Bodies interact through the kernel iff their
     /// groups are equal.

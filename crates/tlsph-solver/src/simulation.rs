@@ -187,7 +187,7 @@ impl<const D: usize> Simulation<D> {
                 spacing: body.spacing,
                 smoothing_length: config.smoothing_factor * body.spacing,
                 density0: material.density,
-                sound_speed0: (material.model.longitudinal_modulus() / material.density).sqrt(),
+                sound_speed0: material.reference_wave_speed(),
             });
         }
         let n_real = particles.len();

@@ -13,6 +13,7 @@ mod damage;
 mod failure;
 mod kernel_groups;
 mod materials;
+mod overview;
 mod placement;
 mod wall_friction;
 

@@ -1,0 +1,139 @@
+//! What `tlsph check` tells a user about a scene before it runs: per body the particle count,
+//! the wave speed of its material and the time step it allows at the start, and the size of the
+//! run that follows from them (steps and particle-steps, the cost measure of the harness).
+
+use crate::scene::{DimensionModel, Scene};
+use std::fmt;
+use tlsph_materials::EquationOfState;
+use tlsph_solver::Model;
+
+/// One body of a [`SceneOverview`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyOverview {
+    /// The body's `name`.
+    pub name: String,
+    /// The `name` of its material.
+    pub material: String,
+    /// Number of particles.
+    pub particles: usize,
+    /// Smoothing length h = `smoothing_factor` · `spacing` \[length\].
+    pub smoothing_length: f64,
+    /// Wave speed at the reference state c0 (`MaterialDescription::reference_wave_speed`)
+    /// \[length/time\].
+    pub wave_speed: f64,
+    /// Largest initial particle speed |v| \[length/time\].
+    pub fastest_particle: f64,
+    /// The CFL step the body allows at the start (`Model::initial_time_steps`) \[time\].
+    pub first_time_step: f64,
+    /// Mie–Grüneisen only: the limiting compression μ_lim (ρ/ρ0 − 1) where the Hugoniot
+    /// pressure becomes infinite (numerics.md §8.8); `None` for other materials or when the
+    /// Hugoniot has no limit.
+    pub compression_limit: Option<f64>,
+}
+
+/// The scene at a glance: its bodies and the run's estimated size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneOverview {
+    /// Per body, in scene order.
+    pub bodies: Vec<BodyOverview>,
+    /// Simulated end time \[time\].
+    pub end_time: f64,
+}
+
+impl SceneOverview {
+    /// The scene's first CFL step: the smallest over its bodies \[time\] (∞ without bodies).
+    pub fn first_time_step(&self) -> f64 {
+        self.bodies
+            .iter()
+            .map(|b| b.first_time_step)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Steps the run takes if the first step held to the end: end time / first step.
+    /// Compression (a stiffening equation of state), faster particles and contact shorten the
+    /// step; slowing particles lengthen it.
+    pub fn estimated_steps(&self) -> f64 {
+        (self.end_time / self.first_time_step()).ceil()
+    }
+
+    /// Particles × estimated steps: the run's size in the harness's cost unit.
+    pub fn estimated_particle_steps(&self) -> f64 {
+        self.estimated_steps() * self.bodies.iter().map(|b| b.particles).sum::<usize>() as f64
+    }
+}
+
+impl Scene {
+    /// The overview `tlsph check` prints (see [`SceneOverview`]).
+    pub fn overview(&self) -> SceneOverview {
+        match &self.model {
+            DimensionModel::One(m) => overview_of(m),
+            DimensionModel::Two(m) => overview_of(m),
+            DimensionModel::Three(m) => overview_of(m),
+        }
+    }
+}
+
+fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
+    let bodies = model
+        .bodies
+        .iter()
+        .zip(model.initial_time_steps())
+        .map(|(body, step)| {
+            let material = &model.materials[body.material];
+            let compression_limit = match material.model.equation_of_state() {
+                Some((EquationOfState::MieGruneisen(eos), _)) => {
+                    Some(eos.compression_limit()).filter(|mu| mu.is_finite())
+                }
+                _ => None,
+            };
+            BodyOverview {
+                name: body.name.clone(),
+                material: material.name.clone(),
+                particles: body.positions.len(),
+                smoothing_length: step.smoothing_length,
+                wave_speed: step.wave_speed,
+                fastest_particle: step.fastest_particle,
+                first_time_step: step.time_step,
+                compression_limit,
+            }
+        })
+        .collect();
+    SceneOverview {
+        bodies,
+        end_time: model.config.end_time,
+    }
+}
+
+impl fmt::Display for SceneOverview {
+    /// One line per body, then the run's size.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for b in &self.bodies {
+            write!(
+                f,
+                "  body `{}`: {} particles of `{}`, h {:.4e}, wave speed {:.4e}, fastest particle \
+                 {:.4e}, first step {:.4e}",
+                b.name,
+                b.particles,
+                b.material,
+                b.smoothing_length,
+                b.wave_speed,
+                b.fastest_particle,
+                b.first_time_step
+            )?;
+            if let Some(mu) = b.compression_limit {
+                write!(
+                    f,
+                    "; equation of state limited to compressions ρ/ρ0 − 1 < {mu:.3e}"
+                )?;
+            }
+            writeln!(f)?;
+        }
+        write!(
+            f,
+            "  about {:.0} steps at the first step ({:.2e} particle-steps); compression, faster \
+             particles and contact shorten the step",
+            self.estimated_steps(),
+            self.estimated_particle_steps()
+        )
+    }
+}

@@ -1,0 +1,92 @@
+//! `tlsph check`'s overview: the time step it announces is the one the solver takes, and an
+//! equation of state's limiting compression is shown where a typo would make it tiny.
+
+use tlsph_io::{parse_scene, DimensionModel};
+use tlsph_solver::Simulation;
+
+/// Two bodies of different stiffness and speed; the one with the smaller CFL step sets it.
+const TWO_BLOCKS: &str = r#"
+[simulation]
+dimension = 2
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.3
+cfl = 0.25
+end_time = 1.0e-4
+
+[[material]]
+name = "steel"
+model = "linear-elastic"
+density = 7850.0
+youngs_modulus = 200.0e9
+poisson_ratio = 0.3
+
+[[material]]
+name = "copper"
+model = "elastic-plastic"
+density = 8930.0
+youngs_modulus = 117.0e9
+poisson_ratio = 0.35
+yield_stress = 400.0e6
+eos = { model = "mie-gruneisen", sound_speed = 3940.0, s1 = 1.489, gamma0 = 2.02 }
+
+[[body]]
+name = "fast"
+material = "copper"
+spacing = 1.0e-3
+box = { min = [0.0, 0.0], max = [0.01, 0.01] }
+velocity = [600.0, 0.0]
+
+[[body]]
+name = "still"
+material = "steel"
+spacing = 2.0e-3
+box = { min = [0.02, 0.0], max = [0.04, 0.01] }
+"#;
+
+#[test]
+fn the_announced_first_step_is_the_one_the_solver_takes() {
+    let scene = parse_scene(TWO_BLOCKS, "blocks.toml").unwrap();
+    let overview = scene.overview();
+    let fast = &overview.bodies[0];
+    // c0 of the copper: sqrt((ρ0C² + 4G/3)/ρ0) with its Mie–Grüneisen bulk modulus.
+    let shear = 117.0e9 / (2.0 * 1.35);
+    let c_copper = ((8930.0 * 3940.0_f64.powi(2) + 4.0 / 3.0 * shear) / 8930.0).sqrt();
+    assert!((fast.wave_speed - c_copper).abs() <= 1e-12 * c_copper);
+    assert_eq!(fast.fastest_particle, 600.0);
+    assert_eq!(fast.particles, 100);
+    // The copper block has the finer spacing and moves: it sets the step.
+    assert_eq!(overview.first_time_step(), fast.first_time_step);
+    assert!(overview.bodies[1].first_time_step > fast.first_time_step);
+    let DimensionModel::Two(model) = scene.model else {
+        panic!("a 2D scene")
+    };
+    let mut sim = Simulation::new(model).unwrap();
+    sim.step().unwrap();
+    let taken = sim.next_dt();
+    assert!(
+        (taken - overview.first_time_step()).abs() <= 1e-12 * taken,
+        "solver {taken:e}, announced {:e}",
+        overview.first_time_step()
+    );
+    // 1e-4 s at that step, over the 150 particles.
+    let steps = (1.0e-4 / taken).ceil();
+    assert_eq!(overview.estimated_steps(), steps);
+    assert_eq!(overview.estimated_particle_steps(), 150.0 * steps);
+}
+
+#[test]
+fn a_mie_gruneisen_limit_is_shown_so_a_typo_in_s1_is_visible() {
+    // D(μ) = 1 − (S1 − 1)μ for S2 = S3 = 0: μ_lim = 1/(S1 − 1). Copper's 1.489 gives 2.045;
+    // a slip of the decimal point (1489) gives 6.7e-4: that body cannot be compressed by more
+    // than 0.07 %, which check now says before the run stops on it.
+    for (s1, limit) in [(1.489, 1.0 / 0.489), (1489.0, 1.0 / 1488.0)] {
+        let text = TWO_BLOCKS.replace("s1 = 1.489", &format!("s1 = {s1}"));
+        let overview = parse_scene(&text, "blocks.toml").unwrap().overview();
+        let shown = overview.bodies[0].compression_limit.unwrap();
+        assert!((shown - limit).abs() <= 1e-9 * limit, "{shown} vs {limit}");
+        assert!(overview.to_string().contains(&format!("{limit:.3e}")));
+        // A material without an equation of state has no limit to show.
+        assert_eq!(overview.bodies[1].compression_limit, None);
+    }
+}
