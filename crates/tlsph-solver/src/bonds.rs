@@ -184,6 +184,9 @@ impl<const D: usize> Bonds<D> {
     /// is dropped, and when a survivor P's gradients are rebuilt, the mirrored reverse gradient
     /// of every bond I → ghost(P, M) follows, G̃_{ghost(P,M), I} = M G̃_{P, ghost(I,M)} (as at
     /// setup), so a quarter model keeps failing like the full one.
+    ///
+    /// Returns the surviving real particles whose gradients were rebuilt (ascending): the
+    /// only ones whose F and Ḟ change.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn remove_failed(
         &mut self,
@@ -194,7 +197,7 @@ impl<const D: usize> Bonds<D> {
         kernel_of: impl Fn(usize) -> AnyKernel,
         corrected: bool,
         mirrors: &impl MirrorMap<D>,
-    ) {
+    ) -> Vec<usize> {
         let mut affected = Vec::new();
         for &f in failed_now {
             for b in self.range(f) {
@@ -262,6 +265,7 @@ impl<const D: usize> Bonds<D> {
             }
             self.gradient_sum[i] = sum;
         }
+        affected
     }
 
     /// Index of bond (i → j), if j is a neighbour of i.

@@ -18,8 +18,8 @@ use crate::prescribed::{Drivers, PrescribedSet};
 use crate::reference::ReferenceState;
 use crate::stability::NeighbourDistances;
 use crate::step::{
-    gather_accelerations_and_kick, gather_kinematics, update_green_lagrange, update_jaumann_rate,
-    ConstitutiveStep, InitialReference, NoViscosity, ReferenceJacobian, MIN_PARTICLES_PER_TASK,
+    gather_accelerations_and_kick, gather_kinematics, particle_kinematics, update_green_lagrange,
+    update_jaumann_rate, ConstitutiveStep, InitialReference, NoViscosity, ReferenceJacobian,
 };
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
@@ -835,10 +835,10 @@ impl<const D: usize> Simulation<D> {
             }
         }
         self.failed_count += newly.len();
-        self.remove_bonds_of(&newly);
-        self.regather_after_failure(dt);
+        let rebuilt = self.remove_bonds_of(&newly);
         if self.updated.is_none() {
-            self.fail_orphans();
+            self.regather_after_failure(&rebuilt, dt);
+            self.fail_orphans(&rebuilt);
         }
     }
 
@@ -855,8 +855,9 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// Takes the reference bonds of `failed` out and rebuilds their survivors' gradients.
-    fn remove_bonds_of(&mut self, failed: &[usize]) {
+    /// Takes the reference bonds of `failed` out and rebuilds their survivors' gradients;
+    /// returns the survivors whose gradients were rebuilt.
+    fn remove_bonds_of(&mut self, failed: &[usize]) -> Vec<usize> {
         let bodies = &self.bodies;
         let kernels = &self.kernels;
         let body_of = |i: usize| body_index(bodies, i);
@@ -868,7 +869,7 @@ impl<const D: usize> Simulation<D> {
             |i| kernels[body_of(i)],
             self.config.formulation == Formulation::TotalLagrangianCorrected,
             &self.ghosts,
-        );
+        )
     }
 
     /// TLSPH: a surviving particle whose reference neighbours have all failed is a lone point
@@ -876,16 +877,14 @@ impl<const D: usize> Simulation<D> {
     /// of the run; it fails with them instead (numerics.md §9.3: no stress, mass and momentum
     /// kept, its internal energy moves to `deleted_particles`). Its last energy increment was
     /// already re-paired with its empty gradient sum by [`Self::regather_after_failure`].
-    /// Removing it changes no surviving particle's bonds, so this never cascades.
-    fn fail_orphans(&mut self) {
+    /// Removing it changes no surviving particle's bonds, so this never cascades. Only the
+    /// particles that just lost bonds (`rebuilt`) can have become orphans.
+    fn fail_orphans(&mut self, rebuilt: &[usize]) {
         let (bonds, removed) = (&self.bonds, &self.removed);
-        let orphans: Vec<usize> = (0..self.n_particles())
-            .filter(|&i| {
-                let neighbours = bonds.neighbours_of(i);
-                !removed[i]
-                    && !neighbours.is_empty()
-                    && neighbours.iter().all(|&j| removed[j as usize])
-            })
+        let orphans: Vec<usize> = rebuilt
+            .iter()
+            .copied()
+            .filter(|&i| bonds.neighbours_of(i).iter().all(|&j| removed[j as usize]))
             .collect();
         if orphans.is_empty() {
             return;
@@ -900,11 +899,13 @@ impl<const D: usize> Simulation<D> {
         }
         self.mark_removed(&orphans);
         self.failed_count += orphans.len();
+        // Its bonds all lead to removed particles: only its own gradient sum is left to clear.
         self.remove_bonds_of(&orphans);
         self.ghosts.refresh_stress(&mut self.particles);
     }
 
-    /// After a bond rebuild (failures), for every surviving particle whose gradients changed:
+    /// After a bond rebuild (failures), for every survivor whose gradients were rebuilt
+    /// (`rebuilt`, TLSPH):
     /// - J / det F ← (J / det F)·det F_old / det F_new at the same displacements u^n, so the
     ///   density the EOS reads stays continuous (DJ/Dt = J tr D, numerics.md §4.3) instead of
     ///   jumping with the kernel estimate; a jump would change p(J, e) without any p dV work
@@ -917,48 +918,29 @@ impl<const D: usize> Simulation<D> {
     ///
     /// F^n and Ḟ^{n−½} of the old bonds are still in the particle arrays (gathered this step);
     /// they are replaced by the new bonds' values.
-    fn regather_after_failure(&mut self, dt: f64) {
-        if self.jacobian_carry.is_empty() || self.updated.is_some() {
+    fn regather_after_failure(&mut self, rebuilt: &[usize], dt: f64) {
+        if self.jacobian_carry.is_empty() {
             return;
         }
-        let (bonds, removed) = (&self.bonds, &self.removed);
+        let p = &self.particles;
+        let regathered: Vec<_> = rebuilt
+            .par_iter()
+            .map(|&i| particle_kinematics(&self.bonds, &p.displacements, &p.velocities, i))
+            .collect();
         let p = &mut self.particles;
-        let (u, v, pk1) = (&p.displacements, &p.velocities, &p.pk1);
-        let (volumes0, masses) = (&p.volumes0, &p.masses);
-        self.jacobian_carry
-            .par_iter_mut()
-            .zip(p.deformation_gradient.par_iter_mut())
-            .zip(p.deformation_rate.par_iter_mut())
-            .zip(p.internal_energy.par_iter_mut())
-            .enumerate()
-            .with_min_len(MIN_PARTICLES_PER_TASK)
-            .for_each(|(i, (((carry, f), f_dot), energy))| {
-                if removed[i] {
-                    return;
-                }
-                let mut f_new = tlsph_math::Tensor::<D>::identity();
-                let mut f_dot_new = tlsph_math::Tensor::<D>::zeros();
-                let r = bonds.range(i);
-                for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
-                    let j = j as usize;
-                    f_new += tlsph_math::outer(&(u[j] - u[i]), g);
-                    f_dot_new += tlsph_math::outer(&(v[j] - v[i]), g);
-                }
-                if f_dot_new != *f_dot {
-                    *energy += 0.5 * dt * volumes0[i] / masses[i]
-                        * pk1[i].component_mul(&(f_dot_new - *f_dot)).sum();
-                    *f_dot = f_dot_new;
-                }
-                if f_new == *f {
-                    return;
-                }
-                let det_old = tlsph_math::embed_with_identity(&*f).determinant();
-                let det_new = tlsph_math::embed_with_identity(&f_new).determinant();
-                if det_old > 0.0 && det_new > 0.0 {
-                    *carry *= det_old / det_new;
-                }
-                *f = f_new;
-            });
+        for (&i, (f_new, f_dot_new)) in rebuilt.iter().zip(regathered) {
+            p.internal_energy[i] += 0.5 * dt * p.volumes0[i] / p.masses[i]
+                * p.pk1[i]
+                    .component_mul(&(f_dot_new - p.deformation_rate[i]))
+                    .sum();
+            p.deformation_rate[i] = f_dot_new;
+            let det_old = tlsph_math::embed_with_identity(&p.deformation_gradient[i]).determinant();
+            let det_new = tlsph_math::embed_with_identity(&f_new).determinant();
+            if det_old > 0.0 && det_new > 0.0 {
+                self.jacobian_carry[i] *= det_old / det_new;
+            }
+            p.deformation_gradient[i] = f_new;
+        }
         // The ghosts' F follows their parents' regathered F (hourglass control reads it).
         self.ghosts.refresh_stress(&mut self.particles);
     }

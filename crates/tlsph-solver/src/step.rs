@@ -31,19 +31,29 @@ pub(crate) fn gather_kinematics<const D: usize>(
         .zip(p.deformation_rate.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(i, (f, f_dot))| {
-            let (ui, vi) = (u[i], v[i]);
-            let mut grad_u = Tensor::<D>::zeros();
-            let mut grad_v = Tensor::<D>::zeros();
-            let r = bonds.range(i);
-            for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
-                let j = j as usize;
-                grad_u += outer(&(u[j] - ui), g);
-                grad_v += outer(&(v[j] - vi), g);
-            }
-            *f = Tensor::<D>::identity() + grad_u;
-            *f_dot = grad_v;
-        });
+        .for_each(|(i, (f, f_dot))| (*f, *f_dot) = particle_kinematics(bonds, u, v, i));
+}
+
+/// (F^n, Ḟ^{n−½}) of particle `i` through its current bonds (the sums of
+/// [`gather_kinematics`]); the same operations in the same order, so a particle whose bonds
+/// did not change gets bit-identical values.
+#[inline]
+pub(crate) fn particle_kinematics<const D: usize>(
+    bonds: &Bonds<D>,
+    u: &[Vector<D>],
+    v: &[Vector<D>],
+    i: usize,
+) -> (Tensor<D>, Tensor<D>) {
+    let (ui, vi) = (u[i], v[i]);
+    let mut grad_u = Tensor::<D>::zeros();
+    let mut grad_v = Tensor::<D>::zeros();
+    let r = bonds.range(i);
+    for (&j, g) in bonds.neighbours[r.clone()].iter().zip(&bonds.gradient[r]) {
+        let j = j as usize;
+        grad_u += outer(&(u[j] - ui), g);
+        grad_v += outer(&(v[j] - vi), g);
+    }
+    (Tensor::<D>::identity() + grad_u, grad_v)
 }
 
 /// m_I a_I = V0_I [P_I Σ_J V0_J G̃_IJ − Σ_J P_J V0_J G̃_JI] (numerics.md §4.5 form (c);

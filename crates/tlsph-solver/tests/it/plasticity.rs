@@ -138,12 +138,27 @@ fn a_failed_particle_leaves_every_sum_and_the_halves_separate() {
     }
 }
 
+/// The unit material (E 0.9, ν 0.2: c = 1) yielding at σ_y = 0.01 without hardening and failing
+/// at ε̄p = 0.05: tears within a few percent of strain.
+pub(super) fn brittle_plastic() -> MaterialModel {
+    use tlsph_materials::MaxPlasticStrainFailure;
+    use tlsph_solver::FailureModel;
+    MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic: LinearElastic::new(0.9, 0.2).unwrap(),
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: None,
+        failure: Some(FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(0.05).unwrap(),
+        )),
+    })
+}
+
 fn failed_particle_case(formulation: Formulation) {
     // A 1D bar whose halves fly apart at ±0.05 c: the centre yields in tension, reaches the
     // failure strain and fails; afterwards no tension crosses the gap, so the halves keep
     // moving apart, momentum stays zero, and the failed particle carries no stress.
-    use tlsph_materials::MaxPlasticStrainFailure;
-    use tlsph_solver::FailureModel;
     let dx = 0.01;
     let positions = lattice([100], dx);
     let mut m = model(
@@ -156,17 +171,7 @@ fn failed_particle_case(formulation: Formulation) {
             ..Setup::default()
         },
     );
-    let elastic = LinearElastic::new(0.9, 0.2).unwrap();
-    m.materials[0].model = MaterialModel::ElasticPlastic(ElasticPlastic {
-        elastic,
-        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
-        pressure: PressureModel::Hypoelastic,
-        min_pressure: None,
-        thermal: None,
-        failure: Some(FailureModel::MaxPlasticStrain(
-            MaxPlasticStrainFailure::new(0.05).unwrap(),
-        )),
-    });
+    m.materials[0].model = brittle_plastic();
     let mut sim = Simulation::new(m).unwrap();
     let mut worst_p: f64 = 0.0;
     sim.run(|s, _| worst_p = worst_p.max(s.diagnostics().linear_momentum.x.abs()))
@@ -345,8 +350,6 @@ fn a_particle_whose_neighbours_all_fail_fails_with_them() {
     // with no neighbour, a lone point mass that can carry no stress. Before the fix it kept
     // the stress it had at that instant (σ_xx = 0.013) for the rest of the run and in every
     // output, though nothing could change it any more.
-    use tlsph_materials::MaxPlasticStrainFailure;
-    use tlsph_solver::FailureModel;
     let dx = 0.01;
     let positions = lattice([100], dx);
     let mut m = model(
@@ -358,16 +361,7 @@ fn a_particle_whose_neighbours_all_fail_fails_with_them() {
             ..Setup::default()
         },
     );
-    m.materials[0].model = MaterialModel::ElasticPlastic(ElasticPlastic {
-        elastic: LinearElastic::new(0.9, 0.2).unwrap(),
-        strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
-        pressure: PressureModel::Hypoelastic,
-        min_pressure: None,
-        thermal: None,
-        failure: Some(FailureModel::MaxPlasticStrain(
-            MaxPlasticStrainFailure::new(0.05).unwrap(),
-        )),
-    });
+    m.materials[0].model = brittle_plastic();
     let mut prestress = Tensor3::zeros();
     prestress[(0, 0)] = 0.005;
     m.bodies[0].initial_stress = Some(prestress);

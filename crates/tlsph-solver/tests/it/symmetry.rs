@@ -294,10 +294,7 @@ fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
     // failed particle's mirror images must leave every sum with it, and the survivors'
     // gradients (including the mirrored reverse gradients) must be rebuilt exactly as in the
     // full model; in updated-Lagrangian SPH the failed particle is no longer mirrored.
-    use tlsph_materials::{LinearElastic, MaxPlasticStrainFailure, VonMisesPlasticity};
-    use tlsph_solver::{
-        ElasticPlastic, FailureModel, MaterialModel, ParticleField, PressureModel, StrengthModel,
-    };
+    use tlsph_solver::ParticleField;
     let dx = 0.05;
     for formulation in [
         Formulation::TotalLagrangianCorrected,
@@ -309,16 +306,7 @@ fn a_quarter_model_fails_the_same_particles_as_the_full_model() {
             ..Setup::default()
         };
         let pull = |x: &Vector<2>| Vector::<2>::new(0.05 * x[0].signum(), 0.0);
-        let material = MaterialModel::ElasticPlastic(ElasticPlastic {
-            elastic: LinearElastic::new(0.9, 0.2).unwrap(),
-            strength: StrengthModel::VonMises(VonMisesPlasticity::new(0.01, 0.0).unwrap()),
-            pressure: PressureModel::Hypoelastic,
-            min_pressure: None,
-            thermal: None,
-            failure: Some(FailureModel::MaxPlasticStrain(
-                MaxPlasticStrainFailure::new(0.05).unwrap(),
-            )),
-        });
+        let material = super::plasticity::brittle_plastic();
         let full_positions = centred(10, 4, dx);
         let quarter_positions: Vec<Vector<2>> = full_positions
             .iter()
