@@ -307,10 +307,12 @@ fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
                 } else {
                     viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length)
                 };
-                *energy += dt * j_half / rho0
-                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                        .component_mul(&d)
-                        .sum();
+                if step.book_energy {
+                    *energy += dt * j_half / rho0
+                        * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                            .component_mul(&d)
+                            .sum();
+                }
                 *sigma = sigma_new;
                 *jac = j;
                 *pk1 = if j_ref != 0.0 && j_ref.is_finite() {

@@ -516,10 +516,12 @@ fn update<
                 sigma_new = Tensor3::zeros();
                 q = 0.0;
             }
-            *energy += dt * j_half / rho0
-                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                    .component_mul(&d)
-                    .sum();
+            if step.book_energy {
+                *energy += dt * j_half / rho0
+                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                        .component_mul(&d)
+                        .sum();
+            }
             *sigma = sigma_new;
             *jac = j;
             *pk1 = if j_ref != 0.0 && j_ref.is_finite() {

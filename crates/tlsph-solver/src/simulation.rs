@@ -481,6 +481,11 @@ impl<const D: usize> Simulation<D> {
         self.ghosts.refresh_kinematics(&mut self.particles);
         match &mut self.updated {
             Some(updated) => {
+                if step > 0 {
+                    // The second half of the stress power of the forces at t^{n−1} (their
+                    // pairs, ∇W and σ/ρ²) with v^{n−½}, before the list moves to x^n.
+                    updated.book_previous_stress_power(&mut self.particles, dt);
+                }
                 if updated.rebuild_due(&self.particles) {
                     if !self.planes.is_empty() {
                         rebuild_current_ghosts(
@@ -507,6 +512,8 @@ impl<const D: usize> Simulation<D> {
                 self.xsph.as_ref().map(|x| &x.velocity[..]),
             ),
         }
+        // The updated-Lagrangian formulation books e from its pair sums instead (below).
+        let book_energy = self.updated.is_none();
         for (b, info) in self.bodies.iter().enumerate() {
             let body = BodyUpdate {
                 material: &self.materials[info.material],
@@ -518,7 +525,13 @@ impl<const D: usize> Simulation<D> {
             };
             match &self.reference {
                 None => body.update(
-                    &constitutive_step(info, dt, &InitialReference, &self.jacobian_carry),
+                    &constitutive_step(
+                        info,
+                        dt,
+                        &InitialReference,
+                        &self.jacobian_carry,
+                        book_energy,
+                    ),
                     &mut self.particles,
                 ),
                 Some(reference) => body.update(
@@ -527,6 +540,7 @@ impl<const D: usize> Simulation<D> {
                         dt,
                         &reference.jacobian[info.range.clone()],
                         &self.jacobian_carry,
+                        book_energy,
                     ),
                     &mut self.particles,
                 ),
@@ -572,7 +586,8 @@ impl<const D: usize> Simulation<D> {
         match &mut self.updated {
             Some(updated) => {
                 updated.update_stress_over_density2(&self.particles);
-                updated.gather_accelerations_and_kick(&mut self.particles, kick);
+                updated.gather_accelerations_and_stress_power(&mut self.particles, dt);
+                crate::updated_lagrangian::kick(&mut self.particles, kick);
             }
             None => gather_accelerations_and_kick(&self.bonds, &mut self.particles, kick),
         }
@@ -825,7 +840,6 @@ impl<const D: usize> Simulation<D> {
         }
         self.mark_removed(&newly);
         if let Some(updated) = &mut self.updated {
-            updated.book_removed_pairs(&mut self.particles, &self.removed, dt);
             // The failed particles leave this step's force sums already: the pair list at x^n
             // is rebuilt without them (a non-finite position, reported by the step's checks,
             // leaves it to the next step).
@@ -1603,12 +1617,14 @@ impl<const D: usize> Xsph<D> {
     }
 }
 
-/// The constitutive inputs of body `info` for a step of `dt`, with the reference's J0.
+/// The constitutive inputs of body `info` for a step of `dt`, with the reference's J0;
+/// `book_energy`: whether the loop books the internal energy (see [`ConstitutiveStep`]).
 fn constitutive_step<'a, R: ReferenceJacobian + ?Sized>(
     info: &BodyInfo,
     dt: f64,
     reference_jacobian: &'a R,
     jacobian_carry: &'a [f64],
+    book_energy: bool,
 ) -> ConstitutiveStep<'a, R> {
     ConstitutiveStep {
         range: info.range.clone(),
@@ -1618,6 +1634,7 @@ fn constitutive_step<'a, R: ReferenceJacobian + ?Sized>(
         sound_speed0: info.sound_speed0,
         reference_jacobian,
         jacobian_carry: (!jacobian_carry.is_empty()).then(|| &jacobian_carry[info.range.clone()]),
+        book_energy,
     }
 }
 

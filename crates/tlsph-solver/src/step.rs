@@ -185,6 +185,11 @@ pub(crate) struct ConstitutiveStep<'a, R: ReferenceJacobian + ?Sized = InitialRe
     /// Per body-local particle: J / det F carried across neighbour-set rebuilds after failures
     /// (`None` without failure), so the EOS sees a continuous density (numerics.md §4.3, §9.3).
     pub jacobian_carry: Option<&'a [f64]>,
+    /// Whether the loop books the internal-energy increment (total-Lagrangian formulations:
+    /// the midpoint rule pairs with their bond forces). False for the updated-Lagrangian
+    /// formulation, which books e from its own pair sums so that it pairs exactly with its
+    /// pair forces (`UpdatedLagrangian::book_previous_stress_power`, numerics.md §3).
+    pub book_energy: bool,
 }
 
 /// Artificial pressure added to the force-driving stress (numerics.md §10.2).
@@ -254,10 +259,12 @@ pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity, R: ReferenceJaco
             // Artificial pressure on the force-driving stress only (numerics.md §10.2).
             let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
             let driving = sigma_new - Tensor3::identity() * q;
-            *energy += dt * j_half / rho0
-                * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                    .component_mul(&d)
-                    .sum();
+            if step.book_energy {
+                *energy += dt * j_half / rho0
+                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                        .component_mul(&d)
+                        .sum();
+            }
             *sigma = sigma_new;
             *jac = j;
             // P = J σ F⁻ᵀ = σ cof F (R 5.32, numerics.md §4.4); a singular or non-finite F
@@ -302,7 +309,9 @@ pub(crate) fn update_green_lagrange<const D: usize, R: ReferenceJacobian + ?Size
             let e_prev = green_lagrange(&f_prev);
             let s = material.second_piola_kirchhoff(&e);
             let s_prev = material.second_piola_kirchhoff(&e_prev);
-            *energy += 0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
+            if step.book_energy {
+                *energy += 0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
+            }
             let j = f.determinant();
             *jac = j;
             let fs = f * s;

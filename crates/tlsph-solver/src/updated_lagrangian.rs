@@ -19,10 +19,17 @@
 //!    the same rule (design choice, documented in numerics terms in ARCHITECTURE.md).
 //! 3. The constitutive update of the body (shared with TLSPH) gives σ^n, J^n and the
 //!    force-driving P^n (artificial bulk viscosity included when declared).
-//! 4. [`UpdatedLagrangian::gather_accelerations_and_kick`]: the symmetrised momentum equation
-//!    a_I = Σ_J m_J (σ_I/ρ_I² + σ_J/ρ_J²)·∇_I W_IJ (R 2.54; F 2.59). Pair terms are equal and
-//!    opposite, so linear momentum is conserved exactly. Pairwise artificial viscosity and
-//!    artificial stress are declared effects that read the same pair list.
+//! 4. [`UpdatedLagrangian::gather_accelerations_and_stress_power`]: the symmetrised momentum
+//!    equation a_I = Σ_J m_J (σ_I/ρ_I² + σ_J/ρ_J²)·∇_I W_IJ (R 2.54; F 2.59). Pair terms are
+//!    equal and opposite, so linear momentum is conserved exactly. Pairwise artificial
+//!    viscosity and artificial stress are declared effects that read the same pair list.
+//!
+//! The internal energy is not the constitutive loop's σ:D/ρ but the SPH energy equation
+//! (R 2.59) from the same pair sums as the forces, in two halves per step:
+//! [`UpdatedLagrangian::book_previous_stress_power`] (forces at t^{n−1}) before step 1 and the
+//! stress power in step 4 (forces at t^n), both with the drift velocity v^{n−½}. Each half is
+//! minus the work of those forces, so the energy closes with the leap-frog to round-off,
+//! also across neighbour rebuilds and failures (design choice).
 
 use crate::particles::Particles;
 use crate::step::MIN_PARTICLES_PER_TASK;
@@ -330,70 +337,68 @@ impl<const D: usize> UpdatedLagrangian<D> {
             });
     }
 
-    /// Energy of a removal step, before the list is rebuilt without the particles `removed`
-    /// (failed in this step's constitutive update of a step of `dt`): each survivor's last
-    /// increment e += ½Δt σ^n:D/ρ paired σ^n with a velocity gradient that still held its
-    /// pairs with them, while the forces at t^n will not. The discrete identity
-    /// Σ_I m_I (σ_I/ρ_I²) : Σ_J m_J (v_J − v_I) ⊗ ∇_I W_IJ = −Σ_I m_I a_I·v_I (numerics.md §3)
-    /// holds for one pair set, so the dropped pairs' share is taken back:
-    /// e_I −= ½Δt (σ_I/ρ_I²) : Σ_{K removed} m_K (v_K − v_I) ⊗ ∇_I W_IK.
-    pub fn book_removed_pairs(&self, p: &mut Particles<D>, removed: &[bool], dt: f64) {
+    /// First half of the internal-energy increment of the step from t^{n−1} to t^n, taken
+    /// before the list moves to x^n: the stress power of the forces at t^{n−1} (their σ/ρ²,
+    /// pairs and ∇W at x^{n−1}) with the drift velocity v^{n−½},
+    /// e_I += ½Δt^n (σ_I/ρ_I²)^{n−1} : Σ_J m_J (v_J − v_I)^{n−½} ⊗ ∇_I W_IJ(x^{n−1}).
+    ///
+    /// With the second half ([`Self::gather_accelerations_and_stress_power`]) this is the SPH
+    /// energy equation (numerics.md §3; R 2.59) integrated so that it pairs exactly with the
+    /// leap-frog kinetic energy: for one pair set Σ_I m_I (σ_I/ρ_I²):Σ_J m_J (v_J − v_I)⊗∇_I W_IJ
+    /// = −Σ_I m_I a_I·v_I, so each half step's change of internal energy is minus the work of
+    /// the same forces. Particles that fail at t^n leave the forces at t^n with σ/ρ² = 0 and
+    /// their pairs, and therefore this booking too. Artificial bulk viscosity is part of the
+    /// force-driving σ/ρ², so its heating is included.
+    pub fn book_previous_stress_power(&self, p: &mut Particles<D>, dt: f64) {
+        let s = &self.stress_over_density2;
+        let (v, masses) = (&p.velocities, &p.masses);
         let pairs = &self.pairs;
-        let Particles {
-            velocities: v,
-            masses,
-            volumes0,
-            pk1,
-            deformation_gradient: f,
-            jacobian,
-            internal_energy,
-            ..
-        } = p;
-        internal_energy[..self.n_real]
+        p.internal_energy[..self.n_real]
             .par_iter_mut()
             .enumerate()
             .with_min_len(MIN_PARTICLES_PER_TASK)
             .for_each(|(i, energy)| {
-                if removed[i] {
-                    return;
-                }
-                let mut dropped = Tensor::<D>::zeros();
-                let r = pairs.range(i);
-                for (&k, g) in pairs.neighbours[r.clone()].iter().zip(&pairs.gradient[r]) {
-                    let k = k as usize;
-                    if removed[k] {
-                        dropped += (v[k] - v[i]) * g.transpose() * masses[k];
-                    }
-                }
-                if dropped != Tensor::<D>::zeros() {
-                    let s =
-                        stress_over_density2(&pk1[i], &f[i], jacobian[i], volumes0[i] / masses[i]);
-                    *energy -= 0.5 * dt * s.component_mul(&dropped).sum();
-                }
-            });
-    }
-
-    /// Step 4: a_I = Σ_J m_J (σ_I/ρ_I² + σ_J/ρ_J²) ∇_I W_IJ (R 2.54; F 2.59), then the kick
-    /// v += `kick` a in the same pass. Failed particles (no pairs) keep their velocity.
-    pub fn gather_accelerations_and_kick(&self, p: &mut Particles<D>, kick: f64) {
-        let s = &self.stress_over_density2;
-        let masses = &p.masses;
-        let pairs = &self.pairs;
-        p.accelerations
-            .par_iter_mut()
-            .zip(p.velocities.par_iter_mut())
-            .enumerate()
-            .with_min_len(MIN_PARTICLES_PER_TASK)
-            .for_each(|(i, (a, v))| {
-                let si = s[i];
-                let mut acc = Vector::<D>::zeros();
+                let (si, vi) = (s[i], v[i]);
+                let mut power = 0.0;
                 let r = pairs.range(i);
                 for (&j, g) in pairs.neighbours[r.clone()].iter().zip(&pairs.gradient[r]) {
                     let j = j as usize;
-                    acc += (si + s[j]) * g * masses[j];
+                    power += masses[j] * (v[j] - vi).dot(&(si * g));
+                }
+                *energy += 0.5 * dt * power;
+            });
+    }
+
+    /// Step 4: a_I = Σ_J m_J (σ_I/ρ_I² + σ_J/ρ_J²) ∇_I W_IJ (R 2.54; F 2.59) at t^n, and in
+    /// the same pass the second half of the internal-energy increment of the step of `dt`
+    /// from t^{n−1}: e_I += ½Δt (σ_I/ρ_I²)^n : Σ_J m_J (v_J − v_I)^{n−½} ⊗ ∇_I W_IJ(x^n) (see
+    /// [`Self::book_previous_stress_power`]). The kick follows in [`kick`], since this pass
+    /// reads the neighbours' velocities. Failed particles (no pairs) get a = 0.
+    pub fn gather_accelerations_and_stress_power(&self, p: &mut Particles<D>, dt: f64) {
+        let s = &self.stress_over_density2;
+        let (v, masses) = (&p.velocities, &p.masses);
+        let pairs = &self.pairs;
+        let n_real = self.n_real;
+        p.accelerations
+            .par_iter_mut()
+            .zip(p.internal_energy.par_iter_mut())
+            .enumerate()
+            .with_min_len(MIN_PARTICLES_PER_TASK)
+            .for_each(|(i, (a, energy))| {
+                let (si, vi) = (s[i], v[i]);
+                let (mut acc, mut power) = (Vector::<D>::zeros(), 0.0);
+                let r = pairs.range(i);
+                for (&j, g) in pairs.neighbours[r.clone()].iter().zip(&pairs.gradient[r]) {
+                    let j = j as usize;
+                    let si_g = si * g;
+                    acc += (si_g + s[j] * g) * masses[j];
+                    power += masses[j] * (v[j] - vi).dot(&si_g);
                 }
                 *a = acc;
-                *v += acc * kick;
+                // Ghosts own no pairs; their energy is their parent's business.
+                if i < n_real {
+                    *energy += 0.5 * dt * power;
+                }
             });
     }
 
@@ -423,6 +428,15 @@ impl<const D: usize> UpdatedLagrangian<D> {
                 *out = vi + sum * epsilon;
             });
     }
+}
+
+/// The leap-frog kick v += `kick` a of every particle (R 5.64–5.66).
+pub(crate) fn kick<const D: usize>(p: &mut Particles<D>, kick: f64) {
+    p.velocities
+        .par_iter_mut()
+        .zip(p.accelerations.par_iter())
+        .with_min_len(MIN_PARTICLES_PER_TASK)
+        .for_each(|(v, a)| *v += a * kick);
 }
 
 /// σ/ρ² of a force-driving stress from P = J σ F⁻ᵀ: P Fᵀ J / ρ0², with `inv_rho0` = V0/m.

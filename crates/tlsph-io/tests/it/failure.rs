@@ -3,6 +3,7 @@
 
 use super::{error_of, line_of};
 use tlsph_io::{parse_scene, run_scene};
+use tlsph_solver::Diagnostics;
 
 /// A quarter model of a steel sphere (Johnson–Cook strength, Mie–Grüneisen EOS) striking an
 /// aluminium plate at 800 m/s. The plate (Johnson–Cook strength, Mie–Grüneisen EOS,
@@ -113,7 +114,7 @@ fn a_plate_that_loses_particles_under_an_eos_keeps_its_energy_balance() {
     let e0 = record.diagnostics[0].total_energy();
     // Tolerance: the contact and bulk viscosity close to about 1e-4 of E0 without failure.
     // Measured worst drift: −1.8e-4 with the removal steps booked exactly
-    // (`a_removal_step_changes_the_total_energy_no_more_than_an_ordinary_step`); +4.8e-4
+    // (`removal_steps_keep_the_energy_balance`); +4.8e-4
     // before that, when each removal step left its neighbours' share of the work unbooked.
     for d in &record.diagnostics {
         let drift = (d.total_energy() - e0) / e0;
@@ -169,19 +170,11 @@ energy_interval = 1.0e-9
 "#;
 
 #[test]
-fn a_removal_step_changes_the_total_energy_no_more_than_an_ordinary_step() {
+fn removal_steps_keep_the_energy_balance() {
     // The forces at t^n act without the particles failing at t^n and through their
     // neighbours' rebuilt gradients (TLSPH) or pair lists (conventional SPH), so the energy
     // increments of that step must pair the stresses with the same sums (numerics.md §9.3).
-    // Measured jump of the total at the removal step, relative to E0 (largest ordinary step):
-    // TLSPH 6.1e-3 before, 3e-11 after (6.5e-11); conventional SPH 6.0e-3 before,
-    // 4.7e-4 after (2.0e-4: its energy update and force sums agree only to O(Δt)).
-    for (formulation, ordinary_floor, factor) in [
-        // TLSPH closes a homogeneous squeeze to round-off: the removal step must too.
-        ("total-lagrangian-corrected", 1e-9, 1.0),
-        // Conventional SPH: no worse than a few of its own ordinary steps.
-        ("updated-lagrangian", 0.0, 4.0),
-    ] {
+    for formulation in ["total-lagrangian-corrected", "updated-lagrangian"] {
         let mut text = SQUEEZED_BAR.replace("FORMULATION", formulation);
         for (k, x) in [0.005, 0.015, 0.025, 0.975, 0.985, 0.995]
             .iter()
@@ -197,24 +190,55 @@ fn a_removal_step_changes_the_total_energy_no_more_than_an_ordinary_step() {
         assert!(record.failure.is_none(), "{:?}", record.failure);
         let samples = &record.diagnostics;
         let e0 = samples[0].total_energy();
-        let (mut ordinary, mut removal, mut removal_steps) = (0.0_f64, 0.0_f64, 0);
-        for pair in samples.windows(2) {
-            let jump = ((pair[1].total_energy() - pair[0].total_energy()) / e0).abs();
-            if pair[1].failed_particles > pair[0].failed_particles {
-                removal = removal.max(jump);
-                removal_steps += 1;
-            } else {
-                ordinary = ordinary.max(jump);
-            }
-        }
+        let jump =
+            |pair: &[Diagnostics]| ((pair[1].total_energy() - pair[0].total_energy()) / e0).abs();
+        let removal_step =
+            |pair: &[Diagnostics]| pair[1].failed_particles > pair[0].failed_particles;
+        let first_removal = samples
+            .windows(2)
+            .position(removal_step)
+            .expect("a removal step");
+        let before_failure = samples
+            .windows(2)
+            .take(first_removal)
+            .map(jump)
+            .fold(0.0, f64::max);
+        let removal = samples
+            .windows(2)
+            .filter(|p| removal_step(p))
+            .map(jump)
+            .fold(0.0, f64::max);
         let failed = samples.last().unwrap().failed_particles;
         assert!(failed >= 90, "{formulation}: {failed} failed");
-        assert!(removal_steps >= 1);
+        // Both formulations close the homogeneous squeeze to round-off before the failures
+        // (measured: TLSPH 6.5e-11; conventional SPH 4.6e-11, and 1.3e-6 when its internal
+        // energy was integrated as σ:D/ρ rather than from its pair sums).
         assert!(
-            removal <= factor * ordinary.max(ordinary_floor),
-            "{formulation}: removal step moved the total by {removal:.2e} of E0, \
-             ordinary steps by up to {ordinary:.2e}"
+            before_failure < 1e-9,
+            "{formulation}: an ordinary step moved the total by {before_failure:.2e} of E0"
         );
+        if formulation == "total-lagrangian-corrected" {
+            // 94 particles fail in one step and the survivors are held: the removal step
+            // closes to round-off as well (measured 3e-11; 6.1e-3 before the removal step was
+            // booked).
+            assert!(
+                removal < 1e-9,
+                "{formulation}: the removal step moved the total by {removal:.2e} of E0"
+            );
+        } else {
+            // Conventional SPH fails the bar over five steps, and the free survivors between
+            // them accelerate at once: the reported total then moves by the leap-frog's
+            // ⅛Δt² Σ m |a|² term at t^n (up to 4.7e-4 of E0 in a step), which telescopes (the
+            // exact per-step pairing with removals is tested in tlsph-solver,
+            // `each_step_changes_the_internal_energy_by_minus_the_work_of_the_pair_forces`).
+            // What the removals leave is measured at the end: 7.4e-6 of E0; 6.2e-4 when the
+            // energy was integrated as σ:D/ρ with the dropped pairs taken back.
+            let end = ((samples.last().unwrap().total_energy() - e0) / e0).abs();
+            assert!(
+                end < 5e-5,
+                "{formulation}: the total ended {end:.2e} of E0 off"
+            );
+        }
     }
 }
 
