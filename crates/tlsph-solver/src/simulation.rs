@@ -482,8 +482,9 @@ impl<const D: usize> Simulation<D> {
         match &mut self.updated {
             Some(updated) => {
                 if step > 0 {
-                    // The second half of the stress power of the forces at t^{n−1} (their
-                    // pairs, ∇W and σ/ρ²) with v^{n−½}, before the list moves to x^n.
+                    // First half of this step's internal energy: the stress power of the
+                    // forces at t^{n−1} (their pairs, ∇W and σ/ρ²) with v^{n−½}, before the
+                    // list moves to x^n. An equation of state then reads e with this half.
                     updated.book_previous_stress_power(&mut self.particles, dt);
                 }
                 if updated.rebuild_due(&self.particles) {

@@ -378,7 +378,6 @@ impl<const D: usize> UpdatedLagrangian<D> {
         let s = &self.stress_over_density2;
         let (v, masses) = (&p.velocities, &p.masses);
         let pairs = &self.pairs;
-        let n_real = self.n_real;
         p.accelerations
             .par_iter_mut()
             .zip(p.internal_energy.par_iter_mut())
@@ -395,10 +394,8 @@ impl<const D: usize> UpdatedLagrangian<D> {
                     power += masses[j] * (v[j] - vi).dot(&si_g);
                 }
                 *a = acc;
-                // Ghosts own no pairs; their energy is their parent's business.
-                if i < n_real {
-                    *energy += 0.5 * dt * power;
-                }
+                // Ghosts and failed particles own no pairs: nothing is added to them.
+                *energy += 0.5 * dt * power;
             });
     }
 
