@@ -658,7 +658,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Δt^{n+1} = C_cfl min_I h_I / (c_I + |v_I|) with c_I = c0 sqrt(J_I) (R 5.69–5.70; for a
     /// material with an equation of state c_I = sqrt((K_s + 4G/3)/ρ_I) with the EOS's current
-    /// isentropic bulk modulus K_s, numerics.md §8.10 `[C]`), or
+    /// isentropic bulk modulus K_s and the J the EOS reads, numerics.md §8.10 `[C]`), or
     /// the effects' limit (contact, numerics.md §7) when smaller, clipped so the run ends
     /// exactly at `end_time`. A limit that is zero, not a number, or too small to advance the
     /// clock (a speed whose square overflows, say) is an error: the run could not advance, yet
@@ -673,18 +673,30 @@ impl<const D: usize> Simulation<D> {
             let jacobians = p.jacobian[r.clone()].par_iter();
             let local = match self.materials[info.material].equation_of_state() {
                 // c = sqrt((K_s(μ, E_v) + 4G/3) J/ρ0): the EOS's current isentropic
-                // stiffness, which grows several-fold in a strong shock.
+                // stiffness, which grows several-fold in a strong shock. J is the one the EOS
+                // reads: carried across neighbour-set rebuilds after failures (§4.3, §9.3).
                 Some((eos, shear)) => {
                     let (rho0, shear_term) = (info.density0, 4.0 / 3.0 * shear);
-                    velocities
-                        .zip(jacobians)
-                        .zip(p.internal_energy[r.clone()].par_iter())
-                        .enumerate()
-                        .map(|(k, ((v, &j), &e))| {
-                            let c = eos_sound_speed(&eos, shear_term, rho0, j, e);
-                            (h / (c + v.norm()), r.start + k)
-                        })
-                        .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index)
+                    let limit = |k: usize, v: &Vector<D>, j: f64, e: f64| {
+                        let c = eos_sound_speed(&eos, shear_term, rho0, j, e);
+                        (h / (c + v.norm()), r.start + k)
+                    };
+                    let energies = p.internal_energy[r.clone()].par_iter();
+                    if self.jacobian_carry.is_empty() {
+                        velocities
+                            .zip(jacobians)
+                            .zip(energies)
+                            .enumerate()
+                            .map(|(k, ((v, &j), &e))| limit(k, v, j, e))
+                            .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index)
+                    } else {
+                        velocities
+                            .zip(jacobians.zip(self.jacobian_carry[r.clone()].par_iter()))
+                            .zip(energies)
+                            .enumerate()
+                            .map(|(k, ((v, (&j, &carry)), &e))| limit(k, v, j * carry, e))
+                            .reduce(|| (f64::INFINITY, usize::MAX), min_by_value_then_index)
+                    }
                 }
                 // A constant modulus: c = c0 sqrt(J) (R 5.69–5.70).
                 None => velocities
@@ -741,7 +753,7 @@ impl<const D: usize> Simulation<D> {
                 &eos,
                 4.0 / 3.0 * shear,
                 info.density0,
-                p.jacobian[i],
+                p.jacobian[i] * self.jacobian_carry.get(i).copied().unwrap_or(1.0),
                 p.internal_energy[i],
             ),
             None => info.sound_speed0 * p.jacobian[i].max(0.0).sqrt(),
@@ -2583,5 +2595,104 @@ mod penalty_contact_tests {
         let diagonal = Vector::<2>::new(-1.0, -1.0) / 2f64.sqrt();
         assert!((corner - diagonal).norm() < 1e-12, "{corner:?}");
         assert_eq!(normal[index(5, 5)], Vector::<2>::zeros());
+    }
+}
+
+#[cfg(test)]
+mod time_step_tests {
+    use super::*;
+    use crate::model::{
+        BodyDescription, ElasticPlastic, FailureModel, MaterialDescription, PressureModel,
+        SimulationConfig, StrengthModel,
+    };
+    use tlsph_kernels::KernelKind;
+    use tlsph_materials::eos::MieGruneisenParameters;
+    use tlsph_materials::{
+        EquationOfState, LinearElastic, MaxPlasticStrainFailure, MieGruneisen, VonMisesPlasticity,
+    };
+
+    #[test]
+    fn the_time_step_reads_the_density_the_equation_of_state_reads() {
+        // A copper rod (M-CU9 Mie–Grüneisen, a failure criterion, so J is carried across
+        // neighbour-set rebuilds) compressed uniformly to J = 0.9. One particle's carried J
+        // is set to 0.8 of its kernel estimate, as a neighbour's removal can leave it: its
+        // EOS reads J = 0.72 and is stiffer there, so it limits Δt with the sound speed of that
+        // J (numerics.md §8.10). The kernel estimate alone would give a 29 % longer step.
+        let (n, dx, rho0) = (20, 1e-4, 8924.0);
+        let eos: EquationOfState = MieGruneisen::new(MieGruneisenParameters {
+            reference_density: rho0,
+            sound_speed: 3940.0,
+            s1: 1.489,
+            s2: 0.0,
+            s3: 0.0,
+            gamma0: 2.02,
+            a: 0.47,
+        })
+        .unwrap()
+        .into();
+        let elastic = LinearElastic::new(110e9, 0.343).unwrap();
+        let material = ElasticPlastic {
+            elastic,
+            strength: StrengthModel::VonMises(VonMisesPlasticity::new(90e6, 0.0).unwrap()),
+            pressure: PressureModel::Eos(eos),
+            min_pressure: None,
+            thermal: None,
+            failure: Some(FailureModel::MaxPlasticStrain(
+                MaxPlasticStrainFailure::new(10.0).unwrap(),
+            )),
+        };
+        let positions: Vec<Vector<1>> = (0..n)
+            .map(|k| Vector::<1>::new((k as f64 + 0.5) * dx))
+            .collect();
+        let model = Model {
+            config: SimulationConfig {
+                formulation: Formulation::TotalLagrangianCorrected,
+                stress_update: StressUpdate::JaumannRate,
+                kernel: KernelKind::CubicSpline,
+                smoothing_factor: 1.2,
+                cfl: 0.3,
+                end_time: 1.0,
+            },
+            materials: vec![MaterialDescription {
+                name: "copper".into(),
+                density: rho0,
+                model: MaterialModel::ElasticPlastic(material),
+            }],
+            bodies: vec![BodyDescription {
+                name: "rod".into(),
+                material: 0,
+                spacing: dx,
+                volumes: vec![dx; n],
+                velocities: vec![Vector::zeros(); n],
+                positions: positions.clone(),
+                initial_stress: None,
+            }],
+            boundaries: vec![],
+            effects: Default::default(),
+        };
+        let mut sim = Simulation::new(model).unwrap();
+        let j = 0.9;
+        let u: Vec<Vector<1>> = positions.iter().map(|x| x * (j - 1.0)).collect();
+        sim.set_displacements(&u);
+        // The first step has Δt = 0: the rod's state is J = 0.9 and e = 0 everywhere.
+        sim.step().unwrap();
+        let (limited, carry) = (7, 0.8);
+        sim.jacobian_carry[limited] = carry;
+        let (dt, particle) = sim.stable_dt((f64::INFINITY, usize::MAX), 1).unwrap();
+        // c = sqrt((K_s(μ) + 4G/3) J/ρ0) at e = 0 (numerics.md §8.10).
+        let shear_term = 4.0 / 3.0 * sim.materials[0].equation_of_state().unwrap().1;
+        let sound_speed = |j: f64| {
+            ((eos.isentropic_bulk_modulus(1.0 / j - 1.0, 0.0) + shear_term) * j / rho0).sqrt()
+        };
+        let c = sound_speed(j * carry);
+        let expected = 0.3 * 1.2 * dx / c;
+        assert_eq!(particle, limited);
+        assert!(
+            (dt / expected - 1.0).abs() < 1e-12,
+            "Δt = {dt:e}, expected {expected:e}"
+        );
+        assert!((sim.sound_speed(limited) / c - 1.0).abs() < 1e-12);
+        // The carry matters here: the kernel estimate's J gives a sound speed 1.29 times lower.
+        assert!(c / sound_speed(j) > 1.25);
     }
 }
