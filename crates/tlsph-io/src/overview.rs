@@ -29,6 +29,10 @@ pub struct BodyOverview {
     /// pressure becomes infinite (numerics.md §8.8); `None` for other materials or when the
     /// Hugoniot has no limit.
     pub compression_limit: Option<f64>,
+    /// Polynomial EOS only: the compressions μ (ρ/ρ0 − 1) nearest the reference state, in
+    /// tension and in compression, where its cold bulk modulus dp/dμ falls to zero
+    /// (`PolynomialEos::stiffness_limits`, numerics.md §8.7); `(None, None)` otherwise.
+    pub stiffness_limits: (Option<f64>, Option<f64>),
 }
 
 /// The scene at a glance: its bodies and the run's estimated size.
@@ -80,11 +84,16 @@ fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
         .zip(model.initial_time_steps())
         .map(|(body, step)| {
             let material = &model.materials[body.material];
-            let compression_limit = match material.model.equation_of_state() {
-                Some((EquationOfState::MieGruneisen(eos), _)) => {
+            let eos = material.model.equation_of_state().map(|(eos, _)| eos);
+            let compression_limit = match eos {
+                Some(EquationOfState::MieGruneisen(eos)) => {
                     Some(eos.compression_limit()).filter(|mu| mu.is_finite())
                 }
                 _ => None,
+            };
+            let stiffness_limits = match eos {
+                Some(EquationOfState::Polynomial(eos)) => eos.stiffness_limits(),
+                _ => (None, None),
             };
             BodyOverview {
                 name: body.name.clone(),
@@ -95,6 +104,7 @@ fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
                 fastest_particle: step.fastest_particle,
                 first_time_step: step.time_step,
                 compression_limit,
+                stiffness_limits,
             }
         })
         .collect();
@@ -124,6 +134,20 @@ impl fmt::Display for SceneOverview {
                 write!(
                     f,
                     "; equation of state limited to compressions ρ/ρ0 − 1 < {mu:.3e}"
+                )?;
+            }
+            let limits: Vec<String> = [b.stiffness_limits.0, b.stiffness_limits.1]
+                .into_iter()
+                .flatten()
+                .map(|mu| format!("{mu:.3e}"))
+                .collect();
+            if !limits.is_empty() {
+                write!(
+                    f,
+                    "; warning: the polynomial equation of state's bulk modulus dp/dμ vanishes at \
+                     ρ/ρ0 − 1 = {}, and beyond it the pressure falls as the density rises (a fit \
+                     used outside its range: waves there are unstable)",
+                    limits.join(" and ")
                 )?;
             }
             writeln!(f)?;

@@ -1,5 +1,6 @@
-//! `tlsph check`'s overview: the time step it announces is the one the solver takes, and an
-//! equation of state's limiting compression is shown where a typo would make it tiny.
+//! `tlsph check`'s overview: the time step it announces is the one the solver takes, an
+//! equation of state's limiting compression is shown where a typo would make it tiny, and a
+//! polynomial equation of state that softens within reach is flagged.
 
 use tlsph_io::{parse_scene, DimensionModel};
 use tlsph_solver::Simulation;
@@ -89,4 +90,28 @@ fn a_mie_gruneisen_limit_is_shown_so_a_typo_in_s1_is_visible() {
         // A material without an equation of state has no limit to show.
         assert_eq!(overview.bodies[1].compression_limit, None);
     }
+}
+
+#[test]
+fn a_polynomial_eos_that_softens_is_flagged() {
+    // C2 = −100 GPa against C1 = 70 GPa: dp/dμ = 70 − 200μ GPa vanishes at μ = 0.35 (a
+    // compression reached in a strong impact), and the copper's wave speed would fall to the
+    // shear term there. The check says where; a C2 of +100 GPa stiffens and is not flagged.
+    let softening = TWO_BLOCKS.replace(
+        r#"eos = { model = "mie-gruneisen", sound_speed = 3940.0, s1 = 1.489, gamma0 = 2.02 }"#,
+        r#"eos = { model = "polynomial", coefficients = [0.0, 70.0e9, -100.0e9, 0.0, 0.0, 0.0, 0.0] }"#,
+    );
+    assert_ne!(softening, TWO_BLOCKS);
+    let overview = parse_scene(&softening, "blocks.toml").unwrap().overview();
+    assert_eq!(overview.bodies[0].stiffness_limits, (None, Some(0.35)));
+    let text = overview.to_string();
+    assert!(
+        text.contains("warning: the polynomial equation of state's bulk modulus dp/dμ vanishes at ρ/ρ0 − 1 = 3.500e-1"),
+        "{text}"
+    );
+    assert_eq!(overview.bodies[1].stiffness_limits, (None, None));
+    let stiffening = softening.replace("-100.0e9", "100.0e9");
+    let overview = parse_scene(&stiffening, "blocks.toml").unwrap().overview();
+    assert_eq!(overview.bodies[0].stiffness_limits, (None, None));
+    assert!(!overview.to_string().contains("warning"));
 }

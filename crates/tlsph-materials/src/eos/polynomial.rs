@@ -65,4 +65,38 @@ impl PolynomialEos {
     pub fn bulk_modulus_at_reference(&self) -> f64 {
         self.c[1]
     }
+
+    /// The compressions μ nearest the reference state at which the cold bulk modulus
+    /// dp/dμ at E_v = 0 (numerics.md §8.7: C1 + 3C3μ² in tension, C1 + 2C2μ + 3C3μ² in
+    /// compression) falls to zero: `(tension, compression)`, each `None` when the modulus stays
+    /// positive on that side (tension only over the physical range μ > −1). Beyond them the
+    /// pressure falls as the material is compressed, or rises as it expands: the fit is used
+    /// outside its range, a wave there is unstable, and the time step's sound speed is 0.
+    pub fn stiffness_limits(&self) -> (Option<f64>, Option<f64>) {
+        let [_, c1, c2, c3, ..] = self.c;
+        // Tension: C1 + 3C3μ² = 0 at μ = −sqrt(C1/(−3C3)) when C3 < 0.
+        let tension = (c3 < 0.0)
+            .then(|| -(c1 / (-3.0 * c3)).sqrt())
+            .filter(|&mu| mu > -1.0);
+        // Compression: the smallest positive root of 3C3μ² + 2C2μ + C1 (C1 > 0).
+        let compression = smallest_positive_root(3.0 * c3, 2.0 * c2, c1);
+        (tension, compression)
+    }
+}
+
+/// The smallest positive root of aμ² + bμ + c with c > 0, or `None`; the roots are taken as
+/// q/a and c/q with q = −(b + sign(b) sqrt(b² − 4ac))/2, which loses no digits to cancellation.
+fn smallest_positive_root(a: f64, b: f64, c: f64) -> Option<f64> {
+    if a == 0.0 {
+        return (b < 0.0).then(|| -c / b);
+    }
+    let discriminant = b * b - 4.0 * a * c;
+    if discriminant < 0.0 {
+        return None;
+    }
+    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
+    [q / a, c / q]
+        .into_iter()
+        .filter(|&mu| mu > 0.0 && mu.is_finite())
+        .min_by(f64::total_cmp)
 }

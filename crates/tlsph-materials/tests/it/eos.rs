@@ -197,6 +197,46 @@ fn polynomial_eos_distinguishes_tension_and_compression() {
 }
 
 #[test]
+fn polynomial_eos_reports_where_its_cold_stiffness_vanishes() {
+    // dp/dμ at E_v = 0 is C1 + 2C2μ + 3C3μ² in compression and C1 + 3C3μ² in tension
+    // (numerics.md §8.7); the limits are its zeros nearest μ = 0, hand-solved here.
+    let cases: [([f64; 4], (Option<f64>, Option<f64>)); 5] = [
+        // A softening C2: 70 − 200μ = 0 at μ = 0.35; tension has no C2 term.
+        ([0.0, 70e9, -100e9, 0.0], (None, Some(0.35))),
+        // A negative C3: 60 − 240μ² = 0 at μ = ±0.5, on both sides.
+        ([0.0, 60e9, 0.0, -80e9], (Some(-0.5), Some(0.5))),
+        // C3 = −1 GPa: zeros at μ = ±4.83, in tension beyond μ = −1 (infinite expansion).
+        ([0.0, 70e9, 0.0, -1e9], (None, Some((70.0f64 / 3.0).sqrt()))),
+        // A softening C2 outweighed by C3: 70 − 20μ + 60μ² has no real zero.
+        ([0.0, 70e9, -10e9, 20e9], (None, None)),
+        // M-AL-POLY: C1 only.
+        ([0.0, 68.63e9, 0.0, 0.0], (None, None)),
+    ];
+    for ([c0, c1, c2, c3], expected) in cases {
+        let eos = PolynomialEos::new([c0, c1, c2, c3, 0.0, 0.0, 0.0]).unwrap();
+        let (tension, compression) = eos.stiffness_limits();
+        for (found, wanted) in [(tension, expected.0), (compression, expected.1)] {
+            match (found, wanted) {
+                (Some(mu), Some(want)) => {
+                    assert_relative_eq!(mu, want, max_relative = 1e-14);
+                    // The slope vanishes there and is positive just inside.
+                    let slope = |mu: f64| eos.pressure_derivatives(mu, 0.0).0;
+                    assert!(
+                        slope(mu).abs() < 1e-12 * c1,
+                        "{c:?}: {}",
+                        slope(mu),
+                        c = [c1, c2, c3]
+                    );
+                    assert!(slope(0.99 * mu) > 0.0);
+                }
+                (None, None) => {}
+                other => panic!("{:?}: {other:?}", [c1, c2, c3]),
+            }
+        }
+    }
+}
+
+#[test]
 fn polynomial_eos_rejects_bad_coefficients_by_name() {
     let good = [0.0, 1e9, 0.0, 0.0, 0.0, 0.0, 0.0];
     assert_eq!(
