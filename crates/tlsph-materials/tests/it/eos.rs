@@ -200,7 +200,9 @@ fn polynomial_eos_distinguishes_tension_and_compression() {
 fn polynomial_eos_reports_where_its_cold_stiffness_vanishes() {
     // dp/dμ at E_v = 0 is C1 + 2C2μ + 3C3μ² in compression and C1 + 3C3μ² in tension
     // (numerics.md §8.7); the limits are its zeros nearest μ = 0, hand-solved here.
-    let cases: [([f64; 4], (Option<f64>, Option<f64>)); 5] = [
+    // ([C0, C1, C2, C3], (tension limit, compression limit))
+    type Limits = (Option<f64>, Option<f64>);
+    let cases: [([f64; 4], Limits); 5] = [
         // A softening C2: 70 − 200μ = 0 at μ = 0.35; tension has no C2 term.
         ([0.0, 70e9, -100e9, 0.0], (None, Some(0.35))),
         // A negative C3: 60 − 240μ² = 0 at μ = ±0.5, on both sides.
