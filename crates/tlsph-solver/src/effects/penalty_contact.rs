@@ -9,6 +9,10 @@
 //! pairs within 2h). The fully surrounded count is the largest of the body at the first step
 //! (24 in 2D and 92 in 3D for h = 1.5Δx). From the counts come the surface flags, the outward
 //! normals of the surface particles, and the pair forces of the law (zone, penalty, friction).
+//! In a total-Lagrangian formulation the normal is summed over the reference positions and
+//! carried to the current configuration by Nanson's relation n ∝ F^{−T} N `[C]`: summed over
+//! the current positions it turns with the near-zero-energy zig-zag of a surface row, and the
+//! force held to it then feeds that motion (a block resting on a deformable base inverted).
 //! Of two surface particles the flatter one gives the normal (see `defines_normal`).
 //!
 //! Each pair contribution is one function of (I, K) evaluated identically from both ends, so
@@ -192,8 +196,11 @@ impl<const D: usize> PenaltyContact<D> {
             .enumerate()
             .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, s)| *s = is_surface(count[k], full[body[k] as usize]));
-        // 2. Outward normals of surface particles, from all live neighbours.
+        // 2. Outward normals of surface particles, from all live neighbours: in the current
+        //    configuration (updated-Lagrangian), or in the reference one and carried to the
+        //    current by Nanson's relation n ∝ F^{−T} N (total-Lagrangian).
         let surface = &self.surface;
+        let total_lagrangian = at.pairs.is_none();
         self.normal
             .par_iter_mut()
             .enumerate()
@@ -205,9 +212,16 @@ impl<const D: usize> PenaltyContact<D> {
                 }
                 let i = parts[k] as usize;
                 let kernel = &kernels[body[k] as usize];
-                let mut normal = OutwardNormal::new(position(i), kernel);
-                Self::for_each_neighbour(at, i, kernel.support_radius(), |_, xj| normal.add(xj));
-                *n = normal.unit();
+                let support = kernel.support_radius();
+                if total_lagrangian {
+                    let mut normal = OutwardNormal::new(p.positions0[i], kernel);
+                    Self::for_each_neighbour(at, i, support, |j, _| normal.add(p.positions0[j]));
+                    *n = current_normal(&p.deformation_gradient[i], normal.unit());
+                } else {
+                    let mut normal = OutwardNormal::new(position(i), kernel);
+                    Self::for_each_neighbour(at, i, support, |_, xj| normal.add(xj));
+                    *n = normal.unit();
+                }
             });
         self.prepared = true;
     }
@@ -389,5 +403,24 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
 
     fn contact_rebuilds(&self) -> Option<u64> {
         Some(self.candidates.rebuilds())
+    }
+}
+
+/// The unit normal n = F^{−T} N / |F^{−T} N| of a surface whose reference unit normal is `N`
+/// (Nanson's relation n da = J F^{−T} N dA), or zero when `N` is zero or F is singular.
+#[inline]
+fn current_normal<const D: usize>(
+    deformation_gradient: &tlsph_math::Tensor<D>,
+    reference_normal: Vector<D>,
+) -> Vector<D> {
+    let Some(inverse) = deformation_gradient.try_inverse() else {
+        return Vector::zeros();
+    };
+    let normal = inverse.transpose() * reference_normal;
+    let length = normal.norm();
+    if length > 0.0 && length.is_finite() {
+        normal / length
+    } else {
+        Vector::zeros()
     }
 }

@@ -300,3 +300,80 @@ fn penalty_contact_setup_errors_name_the_field() {
     });
     assert_eq!(field_of(both), "penalty_contact");
 }
+
+#[test]
+fn a_block_resting_on_a_deformable_base_stays_at_rest() {
+    // An 8 × 6 block set 0.02 dx above a 40 × 6 base whose bottom row is clamped, loaded by
+    // its weight (g = 0.001: ρgH/E = 0.7 % strain at the block's foot) over a smooth ramp of about
+    // 17 wave transits of the block. A conservative contact stores a non-negative energy
+    // (the `contact` column is its booked work, so it may dip below zero only by the time
+    // integration's error; measured 0) and leaves the pair vibrating gently after the ramp
+    // (kinetic / internal energy measured ≤ 0.14; bound 0.3). Normals taken from the current
+    // surface turn with the surface particles' zig-zag motion, and the contact force, held to
+    // them, is not the gradient of any potential: it fed that motion until a block particle
+    // inverted at t = 135 (step 408). The reference normals carried by F (Nanson's relation)
+    // do not see that motion.
+    use tlsph_solver::{BodyForceDescription, RampShape, VelocityRamp};
+    let dx = 1.0;
+    let base = lattice([40, 6], dx);
+    let block: Vec<Vector<2>> = lattice([8, 6], dx)
+        .iter()
+        .map(|x| x + Vector::<2>::new(16.0, 6.02))
+        .collect();
+    let clamped: Vec<usize> = (0..base.len()).filter(|&i| base[i][1] < dx).collect();
+    let mut config = config(Formulation::TotalLagrangianCorrected, 300.0);
+    config.smoothing_factor = 1.5;
+    config.cfl = 0.3;
+    let model = Model {
+        config,
+        materials: materials(),
+        bodies: vec![
+            body("base", 0, base, dx, Vector::<2>::zeros()),
+            body("block", 0, block, dx, Vector::<2>::zeros()),
+        ],
+        boundaries: vec![BoundaryDescription {
+            name: "clamp".into(),
+            body: 0,
+            particles: clamped,
+            velocity: Vector::<2>::zeros(),
+            components: [true, true],
+            ramp: None,
+        }],
+        effects: EffectsDescription {
+            penalty_contact: penalty(0.0),
+            body_force: Some(BodyForceDescription {
+                acceleration: Vector::<2>::new(0.0, -0.001),
+                bodies: Some(vec![1]),
+                ramp: Some(VelocityRamp {
+                    duration: 100.0,
+                    shape: RampShape::Smooth,
+                }),
+            }),
+            ..Default::default()
+        },
+    };
+    let mut sim = Simulation::new(model).unwrap();
+    let contact = |s: &Simulation<2>| {
+        s.diagnostics()
+            .effect_energies
+            .iter()
+            .find(|(name, _)| name == "contact")
+            .unwrap()
+            .1
+    };
+    let (mut lowest, mut stored, mut worst_ratio) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let result = sim.run(|s, r| {
+        let d = s.diagnostics();
+        lowest = lowest.min(contact(s));
+        stored = stored.max(contact(s));
+        if r.time > 150.0 {
+            worst_ratio = worst_ratio.max(d.kinetic / d.internal);
+        }
+    });
+    eprintln!(
+        "contact energy in [{lowest:.3e}, {stored:.3e}], kinetic / internal after the ramp ≤ {worst_ratio:.3}"
+    );
+    result.unwrap();
+    assert!(lowest > -1e-3 * stored, "contact column {lowest:e}");
+    assert!(worst_ratio < 0.3, "kinetic / internal {worst_ratio}");
+}
