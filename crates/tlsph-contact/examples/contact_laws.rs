@@ -9,13 +9,13 @@ use tlsph_contact::{
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Two 2D steel-like bodies with spacing Δx = 1 mm and h = 1.2Δx.
-    let (dx, h, youngs, modulus, sound_speed) = (1e-3, 1.2e-3, 200e9, 270e9, 5.9e3);
+    let (dx, h, youngs, modulus) = (1e-3, 1.2e-3, 200e9, 270e9);
 
     // Potential law (numerics.md §12.2): a = 1, n = 4, d0 = Δx.
     let kernel = KernelKind::CubicSpline.build(2, h)?;
     let potential = PotentialLaw::new(kernel, dx, modulus * dx, 4.0, 0.0);
     // Penalty law (numerics.md §12.1): k_c = E d0, R = d0, μ = 0.2.
-    let penalty = PenaltyLaw::new::<2>(1.0, 1.0, 0.2, youngs, sound_speed, dx);
+    let penalty = PenaltyLaw::new::<2>(1.0, 1.0, 0.2, youngs, dx);
     let normal = Vector::<2>::new(0.0, 1.0);
     println!(
         "{:>6} {:>14} {:>14} {:>14}",
@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let r = dx * (0.5 + 0.05 * step as f64);
         let state = potential.evaluate(r);
         let f_n = penalty
-            .force_on_partner(&(normal * r), &normal, &Vector::zeros())
+            .force_on_partner(&(normal * r), &normal, &Vector::zeros(), 0.0)
             .map_or(0.0, |f| f[1]);
         println!(
             "{:>6.2} {:>14.4e} {:>14.4e} {:>14.4e}",

@@ -21,8 +21,13 @@
 //!    other pumped energy into the contact (a slider falling at v onto a plate while sliding at
 //!    5v rebounded at 1.36v). The weight and its small tangential force −Φ w' t̂ make each pair
 //!    conservative for a fixed normal.
-//! 5. **Friction** (F 4.3): f_K += −μ |f_n| v̂_t, v_t the part of v_K − v_I tangential to n̂_I,
-//!    v̂_t = v_t / max(|v_t|, 1e-6 c*) (c* the smaller sound speed).
+//! 5. **Friction** (F 4.3, with a stick state `[C]`): f_K += −|f_n| min(μ, λ |v_t|) v_t/|v_t|,
+//!    v_t the part of v_K − v_I tangential to n̂_I after the step's other forces and λ the
+//!    caller's stick rate \[s/m\]: per unit of normal force, the friction force per unit of
+//!    sliding speed that would stop the sliding within the step. Coulomb's kinetic force while
+//!    the pair slides; when a smaller force stops it, exactly that force, and the pair sticks.
+//!    Fuller's law has no stick state; its regularised direction v_t / max(|v_t|, 1e-6 c*)
+//!    chatters about zero sliding speed.
 
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
@@ -36,9 +41,6 @@ pub const SURFACE_FRACTION: f64 = 0.75;
 /// Penetration floor of the penalty law as a fraction of R (numerics.md §12.1 `[C]`): the force
 /// stops growing at 19 k_c once a particle is 95 % of the way through the range.
 const FLOOR_FRACTION: f64 = 0.05;
-
-/// Friction regularisation speed as a fraction of the smaller sound speed (numerics.md §12.1).
-const SLIP_FRACTION: f64 = 1e-6;
 
 /// Whether a particle with `count` live same-body neighbours is on the surface of a body whose
 /// fully surrounded particles have `full_count` (F §4.3.1). A particle without live neighbours
@@ -102,21 +104,17 @@ pub struct PenaltyLaw {
     reach: f64,
     /// Friction coefficient μ (0: frictionless).
     friction: f64,
-    /// Regularisation speed 1e-6 c* of the friction direction \[m/s\].
-    slip_speed: f64,
 }
 
 impl PenaltyLaw {
     /// The law of numerics.md §12.1 item 5 in dimension `D`: k_c = `stiffness_factor` ·
     /// `youngs` · d0^{D−1} (E* the smaller Young's modulus of the pair), R = `range_factor` ·
-    /// d0, friction coefficient `friction` regularised at 1e-6 of `sound_speed` (the smaller
-    /// of the pair), d0 = `reach` = ½(Δx_A + Δx_B).
+    /// d0, friction coefficient `friction`, d0 = `reach` = ½(Δx_A + Δx_B).
     pub fn new<const D: usize>(
         stiffness_factor: f64,
         range_factor: f64,
         friction: f64,
         youngs: f64,
-        sound_speed: f64,
         reach: f64,
     ) -> Self {
         Self {
@@ -124,7 +122,6 @@ impl PenaltyLaw {
             range: range_factor * reach,
             reach,
             friction,
-            slip_speed: SLIP_FRACTION * sound_speed,
         }
     }
 
@@ -185,15 +182,37 @@ impl PenaltyLaw {
         })
     }
 
-    /// Force on K at offset `d` = x_K − x_I from surface particle I with unit normal `normal`,
-    /// with relative velocity v_K − v_I: penalty −∇_K U plus friction (numerics.md §12.1
-    /// items 4–5); `None` outside I's zone. I feels the opposite force.
+    /// Normal force magnitude |f_n| = w(t) k_c (R/r⊥ − 1) on K at offset `d` = x_K − x_I from
+    /// surface particle I with unit normal `normal` (numerics.md §12.1 item 4; floored as the
+    /// force is), or `None` outside I's zone.
+    #[inline]
+    pub fn normal_force_on_partner<const D: usize>(
+        &self,
+        d: &Vector<D>,
+        normal: &Vector<D>,
+    ) -> Option<f64> {
+        let (r_n, _, t_len) = self.normal_offset(d, normal)?;
+        Some((self.weight(t_len).0 * self.normal_force(r_n).0).abs())
+    }
+
+    /// Whether the law has friction (μ > 0).
+    pub fn has_friction(&self) -> bool {
+        self.friction > 0.0
+    }
+
+    /// Force on K at offset `d` = x_K − x_I from surface particle I with unit normal `normal`:
+    /// penalty −∇_K U plus friction (numerics.md §12.1 items 4–5, module doc item 5) from the
+    /// relative velocity v_K − v_I after the step's other forces and the stick rate λ
+    /// (`stick_rate` \[s/m\]: per unit of normal force, the friction force per unit of sliding
+    /// speed that would stop the sliding within the step). `None` outside I's zone. I feels the
+    /// opposite force.
     #[inline]
     pub fn force_on_partner<const D: usize>(
         &self,
         d: &Vector<D>,
         normal: &Vector<D>,
         relative_velocity: &Vector<D>,
+        stick_rate: f64,
     ) -> Option<Vector<D>> {
         let (r_n, t, t_len) = self.normal_offset(d, normal)?;
         let (w, dw) = self.weight(t_len);
@@ -206,8 +225,12 @@ impl PenaltyLaw {
         }
         if self.friction > 0.0 {
             let v_t = relative_velocity - normal * relative_velocity.dot(normal);
-            let speed = v_t.norm().max(self.slip_speed);
-            force -= v_t * (self.friction * f_n.abs() / speed);
+            let speed = v_t.norm();
+            if speed > 0.0 {
+                // Kinetic Coulomb force, or the smaller force that stops the sliding (stick).
+                let coefficient = self.friction.min(stick_rate * speed);
+                force -= v_t * (coefficient * f_n.abs() / speed);
+            }
         }
         Some(force)
     }

@@ -2263,7 +2263,6 @@ fn build_penalty_contact<const D: usize>(
             contact.range,
             contact.friction,
             youngs(&bodies[a]).min(youngs(&bodies[b])),
-            bodies[a].sound_speed0.min(bodies[b].sound_speed0),
             0.5 * (bodies[a].spacing + bodies[b].spacing),
         );
         laws[a * nb + b] = Some(law);

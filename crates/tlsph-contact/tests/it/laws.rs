@@ -62,9 +62,9 @@ fn self_contact_excludes_the_reference_support() {
     assert!(between_bodies.allows_self_pair(1e-300) && !between_bodies.allows_self_pair(0.0));
 }
 
-/// k_c = E d0^{d−1} with E = 1, d0 = 1, R = d0, μ as given, c* = 1.
+/// k_c = E d0^{d−1} with E = 1, d0 = 1, R = d0, μ as given.
 fn penalty_law<const D: usize>(friction: f64) -> PenaltyLaw {
-    PenaltyLaw::new::<D>(1.0, 1.0, friction, 1.0, 1.0, 1.0)
+    PenaltyLaw::new::<D>(1.0, 1.0, friction, 1.0, 1.0)
 }
 
 fn check_penalty_gradient<const D: usize>(normal: Vector<D>, offsets: &[Vector<D>]) {
@@ -72,7 +72,7 @@ fn check_penalty_gradient<const D: usize>(normal: Vector<D>, offsets: &[Vector<D
     let zero = Vector::<D>::zeros();
     for d in offsets {
         let force = law
-            .force_on_partner(d, &normal, &zero)
+            .force_on_partner(d, &normal, &zero, 0.0)
             .expect("inside the zone");
         // −∇_K U by central differences (U is smooth inside the zone above the floor).
         let e = 1e-6;
@@ -117,14 +117,14 @@ fn penalty_force_is_the_gradient_of_its_pair_potential_with_the_normal_held() {
 fn penalty_zone_is_the_square_in_2d_and_the_cylinder_in_3d() {
     let law = penalty_law::<2>(0.0);
     let (n, zero) = (Vector::<2>::new(0.0, 1.0), Vector::<2>::zeros());
-    let inside = |d: Vector<2>| law.force_on_partner(&d, &n, &zero).is_some();
+    let inside = |d: Vector<2>| law.force_on_partner(&d, &n, &zero, 0.0).is_some();
     // r⊥ ∈ [−d0, R), |t| < d0.
     assert!(inside(Vector::<2>::new(0.0, 0.999)) && !inside(Vector::<2>::new(0.0, 1.0)));
     assert!(inside(Vector::<2>::new(0.0, -1.0)) && !inside(Vector::<2>::new(0.0, -1.001)));
     assert!(inside(Vector::<2>::new(0.999, 0.5)) && !inside(Vector::<2>::new(1.0, 0.5)));
     let law3 = penalty_law::<3>(0.0);
     let (n3, zero3) = (Vector::<3>::new(0.0, 0.0, 1.0), Vector::<3>::zeros());
-    let inside3 = |d: Vector<3>| law3.force_on_partner(&d, &n3, &zero3).is_some();
+    let inside3 = |d: Vector<3>| law3.force_on_partner(&d, &n3, &zero3, 0.0).is_some();
     // A point at |t| = 0.99 on the diagonal is inside the cylinder (a cube would hold 0.99√2).
     assert!(inside3(Vector::<3>::new(0.7, 0.7, 0.5)));
     assert!(!inside3(Vector::<3>::new(0.72, 0.72, 0.5)));
@@ -135,27 +135,48 @@ fn penalty_zone_is_the_square_in_2d_and_the_cylinder_in_3d() {
 fn penalty_force_on_the_axis_is_fullers_and_friction_opposes_slip() {
     let law = penalty_law::<2>(0.4);
     let n = Vector::<2>::new(0.0, 1.0);
+    let on_axis = Vector::<2>::new(0.0, 0.5);
     // On I's axis at r⊥ = 0.5: f_n = k_c (R/r⊥ − 1) = 1 (F 4.2), no tangential penalty part.
     let still = law
-        .force_on_partner(&Vector::<2>::new(0.0, 0.5), &n, &Vector::zeros())
+        .force_on_partner(&on_axis, &n, &Vector::zeros(), 1e3)
         .unwrap();
     assert_relative_eq!(still[1], 1.0, max_relative = 1e-14);
     assert_eq!(still[0], 0.0);
-    // Sliding at 0.1 (≫ 1e-6 c*) along +x: friction −μ |f_n| in x.
+    assert_relative_eq!(
+        law.normal_force_on_partner(&on_axis, &n).unwrap(),
+        1.0,
+        max_relative = 1e-14
+    );
+    // Sliding at 0.1 along +x (the normal part of the velocity plays no role), with a stick
+    // rate λ = 100 s/m: stopping it would take λ|v_t| = 10 times the normal force, more than
+    // μ = 0.4, so the pair slides and friction is Coulomb's −μ|f_n| in x.
+    let sliding_velocity = Vector::<2>::new(0.1, -0.05);
     let sliding = law
-        .force_on_partner(
-            &Vector::<2>::new(0.0, 0.5),
-            &n,
-            &Vector::<2>::new(0.1, -0.05),
-        )
+        .force_on_partner(&on_axis, &n, &sliding_velocity, 100.0)
         .unwrap();
     assert_relative_eq!(sliding[0], -0.4, max_relative = 1e-12);
     assert_relative_eq!(sliding[1], 1.0, max_relative = 1e-14);
+    // With λ = 2 s/m the stopping force λ|v_t| |f_n| = 0.2 is below μ|f_n|: exactly that
+    // force acts and the pair sticks.
+    let sticking = law
+        .force_on_partner(&on_axis, &n, &sliding_velocity, 2.0)
+        .unwrap();
+    assert_relative_eq!(sticking[0], -0.2, max_relative = 1e-12);
+    // At rest (or without a stick rate) there is no friction force and no division by zero.
+    for (velocity, rate) in [(Vector::zeros(), 2.0), (sliding_velocity, 0.0)] {
+        let f = law.force_on_partner(&on_axis, &n, &velocity, rate).unwrap();
+        assert_eq!(f[0], 0.0);
+    }
     // Below the floor 0.05R the force stays at 19 k_c.
     let deep = law
-        .force_on_partner(&Vector::<2>::new(0.0, 0.01), &n, &Vector::zeros())
+        .force_on_partner(&Vector::<2>::new(0.0, 0.01), &n, &Vector::zeros(), 0.0)
         .unwrap();
     assert_relative_eq!(deep[1], 19.0, max_relative = 1e-12);
+    // Outside the zone: no normal force.
+    assert_eq!(
+        law.normal_force_on_partner(&Vector::<2>::new(0.0, 1.5), &n),
+        None
+    );
 }
 
 #[test]

@@ -13,6 +13,11 @@
 //! carried to the current configuration by Nanson's relation n ∝ F^{−T} N `[C]`: summed over
 //! the current positions it turns with the near-zero-energy zig-zag of a surface row, and the
 //! force held to it then feeds that motion (a block resting on a deformable base inverted).
+//!
+//! Friction has a stick state `[C]` (`PenaltyLaw::force_on_partner`): with friction declared,
+//! `accelerations` first takes each participant's velocity after the step's other forces and
+//! its normal load (the sum of |f_n| over its pair forces), from which each pair's stick rate
+//! follows (`stick_rate`). Without friction neither is stored nor computed.
 //! Of two surface particles the flatter one gives the normal (see `defines_normal`).
 //!
 //! Each pair contribution is one function of (I, K) evaluated identically from both ends, so
@@ -31,6 +36,7 @@
 //! only that refinement uses.
 
 use super::{Configuration, Effect, EffectContext};
+use crate::particles::Particles;
 use rayon::prelude::*;
 use tlsph_contact::{
     is_surface, ContactCandidates, OutwardNormal, PenaltyLaw, DT_FACTOR, PARTICIPANTS_PER_TASK,
@@ -60,10 +66,14 @@ pub struct PenaltyContact<const D: usize> {
     count: Vec<usize>,
     surface: Vec<bool>,
     normal: Vec<Vector<D>>,
-    /// Per participant: velocity at t^n (scratch), contact force, summed normal stiffness.
+    /// Per participant: velocity after the step's other forces (scratch; friction only),
+    /// contact force, summed normal stiffness.
     velocity: Vec<Vector<D>>,
     force: Vec<Vector<D>>,
     stiffness: Vec<f64>,
+    /// Per participant: the sum of the normal forces of its pair forces this step (friction
+    /// only, else empty), over which its stick forces share its mass (`stick_rate`).
+    normal_load: Vec<f64>,
     resultant: Vector<D>,
     /// Geometry holds x^n (set by `time_step_limit`, used by `accelerations`).
     prepared: bool,
@@ -93,7 +103,11 @@ impl<const D: usize> PenaltyContact<D> {
             .clone()
             .map(PenaltyLaw::reach)
             .fold(f64::INFINITY, f64::min);
-        let max_zone = active.map(PenaltyLaw::zone_radius).fold(0.0, f64::max);
+        let max_zone = active
+            .clone()
+            .map(PenaltyLaw::zone_radius)
+            .fold(0.0, f64::max);
+        let friction = active.clone().any(PenaltyLaw::has_friction);
         let candidates =
             ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach)
                 .with_mirrors(mirrors);
@@ -113,9 +127,14 @@ impl<const D: usize> PenaltyContact<D> {
             count: vec![0; n],
             surface: vec![false; n],
             normal: vec![Vector::zeros(); n],
-            velocity: vec![Vector::zeros(); n],
+            velocity: if friction {
+                vec![Vector::zeros(); n]
+            } else {
+                Vec::new()
+            },
             force: vec![Vector::zeros(); n],
             stiffness: vec![0.0; n],
+            normal_load: if friction { vec![0.0; n] } else { Vec::new() },
             resultant: Vector::zeros(),
             prepared: false,
         }
@@ -261,6 +280,99 @@ impl<const D: usize> PenaltyContact<D> {
         (&self.count, &self.surface, &self.normal)
     }
 
+    /// Friction's inputs for this step (module doc): each participant's velocity after the
+    /// step's other forces (a driven body's: its imposed velocity, which the kick does not
+    /// change) and its normal load, the sum of |f_n| over its pair forces, from the same zones
+    /// the forces use.
+    fn prepare_friction(&mut self, p: &Particles<D>, kick: f64) {
+        let parts = self.candidates.participants();
+        let driven = &self.driven;
+        self.velocity
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(PARTICIPANTS_PER_TASK)
+            .for_each(|(k, v)| {
+                let i = parts[k] as usize;
+                *v = if driven[k] {
+                    p.velocities[i] - p.accelerations[i] * kick
+                } else {
+                    p.velocities[i]
+                };
+            });
+        let mut load = std::mem::take(&mut self.normal_load);
+        let this = &*self;
+        load.par_iter_mut()
+            .enumerate()
+            .with_min_len(PARTICIPANTS_PER_TASK)
+            .for_each(|(k, sum)| {
+                *sum = this.sum_over_pair_forces(k, |law, d, n| {
+                    law.normal_force_on_partner(d, n).unwrap_or(0.0)
+                });
+            });
+        self.normal_load = load;
+    }
+
+    /// Σ over the pair forces of participant `k` of `term(law, d, n̂)`: each candidate partner
+    /// and mirror image, in each role in which a normal acts (`defines_normal`), with d the
+    /// partner's offset from the surface particle and n̂ the surface particle's normal (an
+    /// image's position and normal reflected), at x^n.
+    fn sum_over_pair_forces(
+        &self,
+        k: usize,
+        term: impl Fn(&PenaltyLaw, &Vector<D>, &Vector<D>) -> f64,
+    ) -> f64 {
+        let (x, normal) = (self.candidates.positions(), &self.normal);
+        let mirrors = self.candidates.mirrors();
+        let mut sum = 0.0;
+        let mut pair = |q: usize, x_q: Vector<D>, n_q: Vector<D>| {
+            let Some(law) = self.law(k, q) else {
+                return;
+            };
+            if self.defines_normal(k, q) {
+                sum += term(law, &(x_q - x[k]), &normal[k]);
+            }
+            if self.defines_normal(q, k) {
+                sum += term(law, &(x[k] - x_q), &n_q);
+            }
+        };
+        for &q in self.candidates.of(k) {
+            let q = q as usize;
+            pair(q, x[q], normal[q]);
+        }
+        for image in self.candidates.images_of(k) {
+            let (q, mask) = (image.partner as usize, image.mask);
+            pair(
+                q,
+                mirrors.point(&x[q], mask),
+                mirrors.vector(&normal[q], mask),
+            );
+        }
+        sum
+    }
+
+    /// Stick rate λ of the pair (a, b) \[s/m\] (module doc, `PenaltyLaw::force_on_partner`):
+    /// λ = 1/(Δt* (N_a/m_a + N_b/m_b)) with N the participants' normal loads and 1/m = 0 for a
+    /// driven body, whose velocity no force changes. Each pair force then takes a share of a
+    /// participant's mass in proportion to its normal force: where all of a particle's pairs
+    /// slide alike, their stick forces together stop the sliding within the kick, no pair can
+    /// reverse it, and a pair's stick and kinetic forces scale alike with its normal force.
+    /// Zero without friction.
+    #[inline]
+    fn stick_rate(&self, p: &Particles<D>, a: usize, b: usize, kick: f64) -> f64 {
+        if self.normal_load.is_empty() {
+            return 0.0;
+        }
+        let parts = self.candidates.participants();
+        let compliance = |k: usize| {
+            if self.driven[k] {
+                0.0
+            } else {
+                self.normal_load[k] / p.masses[parts[k] as usize]
+            }
+        };
+        1.0 / (kick * (compliance(a) + compliance(b)))
+    }
+
     /// Law between the bodies of participants `a` and `b`.
     #[inline]
     fn law(&self, a: usize, b: usize) -> Option<&PenaltyLaw> {
@@ -284,40 +396,15 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         self.prepare(at);
         let mut stiffness = std::mem::take(&mut self.stiffness);
         let this = &*self;
-        let (x, normal) = (this.candidates.positions(), &this.normal);
-        let (skin, mirrors) = (this.candidates.skin(), this.candidates.mirrors());
+        let skin = this.candidates.skin();
         stiffness
             .par_iter_mut()
             .enumerate()
             .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, s)| {
-                let mut sum = 0.0;
-                // Partner q at x_q with normal n_q (an image: both reflected).
-                let mut pair = |q: usize, x_q: Vector<D>, n_q: Vector<D>| {
-                    let Some(law) = this.law(k, q) else {
-                        return;
-                    };
-                    let d = x_q - x[k];
-                    if this.defines_normal(k, q) {
-                        sum += law.vote_stiffness(&d, &normal[k], skin).unwrap_or(0.0);
-                    }
-                    if this.defines_normal(q, k) {
-                        sum += law.vote_stiffness(&-d, &n_q, skin).unwrap_or(0.0);
-                    }
-                };
-                for &q in this.candidates.of(k) {
-                    let q = q as usize;
-                    pair(q, x[q], normal[q]);
-                }
-                for image in this.candidates.images_of(k) {
-                    let (q, mask) = (image.partner as usize, image.mask);
-                    pair(
-                        q,
-                        mirrors.point(&x[q], mask),
-                        mirrors.vector(&normal[q], mask),
-                    );
-                }
-                *s = sum;
+                *s = this.sum_over_pair_forces(k, |law, d, n| {
+                    law.vote_stiffness(d, n, skin).unwrap_or(0.0)
+                });
             });
         self.stiffness = stiffness;
         self.candidates
@@ -334,42 +421,43 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
         }
         self.prepared = false;
         let p = ctx.particles;
-        let parts = self.candidates.participants();
-        // Velocity at t^n: undo half of this step's kick.
-        self.velocity
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(PARTICIPANTS_PER_TASK)
-            .for_each(|(k, v)| {
-                let i = parts[k] as usize;
-                *v = p.velocities[i] - p.accelerations[i] * (0.5 * ctx.kick);
-            });
+        if !self.normal_load.is_empty() {
+            self.prepare_friction(p, ctx.kick);
+        }
         let mut force = std::mem::take(&mut self.force);
         let this = &*self;
-        let (x, v, normal) = (this.candidates.positions(), &this.velocity, &this.normal);
+        let (x, normal) = (this.candidates.positions(), &this.normal);
         let mirrors = this.candidates.mirrors();
+        // Without friction no velocity is read (the buffer is empty).
+        let velocity = |q: usize| this.velocity.get(q).copied().unwrap_or_else(Vector::zeros);
         force
             .par_iter_mut()
             .enumerate()
             .with_min_len(PARTICIPANTS_PER_TASK)
             .for_each(|(k, f)| {
                 let mut sum = Vector::<D>::zeros();
+                let v_k = velocity(k);
                 // Partner q at x_q with normal n_q and velocity v_q (an image: all reflected).
                 let mut pair = |q: usize, x_q: Vector<D>, n_q: Vector<D>, v_q: Vector<D>| {
                     let Some(law) = this.law(k, q) else {
                         return;
                     };
+                    let stick_rate = this.stick_rate(p, k, q, ctx.kick);
                     // k as the surface particle of the pair (k, q): it feels −f_q.
                     if this.defines_normal(k, q) {
-                        if let Some(on_q) =
-                            law.force_on_partner(&(x_q - x[k]), &normal[k], &(v_q - v[k]))
-                        {
+                        if let Some(on_q) = law.force_on_partner(
+                            &(x_q - x[k]),
+                            &normal[k],
+                            &(v_q - v_k),
+                            stick_rate,
+                        ) {
                             sum -= on_q;
                         }
                     }
                     // k as the partner of surface particle q.
                     if this.defines_normal(q, k) {
-                        if let Some(on_k) = law.force_on_partner(&(x[k] - x_q), &n_q, &(v[k] - v_q))
+                        if let Some(on_k) =
+                            law.force_on_partner(&(x[k] - x_q), &n_q, &(v_k - v_q), stick_rate)
                         {
                             sum += on_k;
                         }
@@ -377,7 +465,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                 };
                 for &q in this.candidates.of(k) {
                     let q = q as usize;
-                    pair(q, x[q], normal[q], v[q]);
+                    pair(q, x[q], normal[q], velocity(q));
                 }
                 for image in this.candidates.images_of(k) {
                     let (q, mask) = (image.partner as usize, image.mask);
@@ -385,7 +473,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                         q,
                         mirrors.point(&x[q], mask),
                         mirrors.vector(&normal[q], mask),
-                        mirrors.vector(&v[q], mask),
+                        mirrors.vector(&velocity(q), mask),
                     );
                 }
                 *f = sum;
