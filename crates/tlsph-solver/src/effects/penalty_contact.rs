@@ -13,12 +13,12 @@
 //! carried to the current configuration by Nanson's relation n ∝ F^{−T} N `[C]`: summed over
 //! the current positions it turns with the near-zero-energy zig-zag of a surface row, and the
 //! force held to it then feeds that motion (a block resting on a deformable base inverted).
+//! Of two surface particles the flatter one gives the normal (see `defines_normal`).
 //!
 //! Friction has a stick state `[C]` (`PenaltyLaw::force_on_partner`): with friction declared,
 //! `accelerations` first takes each participant's velocity after the step's other forces and
 //! its normal load (the sum of |f_n| over its pair forces), from which each pair's stick rate
 //! follows (`stick_rate`). Without friction neither is stored nor computed.
-//! Of two surface particles the flatter one gives the normal (see `defines_normal`).
 //!
 //! Each pair contribution is one function of (I, K) evaluated identically from both ends, so
 //! forces are equal and opposite and linear momentum is conserved to round-off. The force is
@@ -27,9 +27,9 @@
 //! compressed pairs plus what friction dissipated.
 //!
 //! With symmetry planes a participant near a plane also meets the mirror images of the
-//! participants beyond it (numerics.md §13.1): an image carries its parent's surface flag and
-//! neighbour count, and its reflected position, normal and velocity, as the full model's
-//! particle there. The counts and normals of particles near a plane already include the
+//! participants beyond it (numerics.md §13.1): an image carries its parent's surface flag,
+//! neighbour count, mass and normal load, and its reflected position, normal and velocity, as
+//! the full model's particle there. The counts and normals of particles near a plane already include the
 //! symmetry ghosts among their neighbours.
 //!
 //! Not built: Fuller's multiple-normal refinement and the corner class (n_I ≤ 0.5 n_full), which
