@@ -1,11 +1,12 @@
 //! What `tlsph check` tells a user about a scene before it runs: per body the particle count,
-//! the wave speed of its material and the time step it allows at the start, and the size of the
-//! run that follows from them (steps and particle-steps, the cost measure of the harness).
+//! the wave speed of its material and the time step it allows at the start, the size of the
+//! run that follows from them (steps and particle-steps, the cost measure of the harness), and
+//! notes on effects the scene is likely to need.
 
 use crate::scene::{DimensionModel, Scene};
 use std::fmt;
 use tlsph_materials::EquationOfState;
-use tlsph_solver::Model;
+use tlsph_solver::{Formulation, Model};
 
 /// One body of a [`SceneOverview`].
 #[derive(Debug, Clone, PartialEq)]
@@ -35,13 +36,16 @@ pub struct BodyOverview {
     pub stiffness_limits: (Option<f64>, Option<f64>),
 }
 
-/// The scene at a glance: its bodies and the run's estimated size.
+/// The scene at a glance: its bodies, the run's estimated size and advice on its set-up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneOverview {
     /// Per body, in scene order.
     pub bodies: Vec<BodyOverview>,
     /// Simulated end time \[time\].
     pub end_time: f64,
+    /// Set-up advice, one sentence each (printed as `note:` lines): effects a scene is likely
+    /// to need for what it declares.
+    pub notes: Vec<String>,
 }
 
 impl SceneOverview {
@@ -111,7 +115,27 @@ fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
     SceneOverview {
         bodies,
         end_time: model.config.end_time,
+        notes: set_up_notes(model),
     }
+}
+
+/// Advice on effects the scene is likely to need (see [`SceneOverview::notes`]).
+fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
+    let mut notes = Vec::new();
+    let total_lagrangian = model.config.formulation != Formulation::UpdatedLagrangian;
+    if total_lagrangian
+        && model.effects.penalty_contact.is_some()
+        && model.effects.hourglass_control.is_none()
+    {
+        notes.push(
+            "penalty contact between total-Lagrangian bodies without [hourglass_control]: a \
+             surface pressed hard, or sheared by friction, can zig-zag particle by particle and \
+             let the other body dig in; declare hourglass control (coefficient = 1 held the \
+             cases measured in docs/scene-format.md)"
+                .into(),
+        );
+    }
+    notes
 }
 
 impl fmt::Display for SceneOverview {
@@ -158,6 +182,10 @@ impl fmt::Display for SceneOverview {
              particles and contact shorten the step",
             self.estimated_steps(),
             self.estimated_particle_steps()
-        )
+        )?;
+        for note in &self.notes {
+            write!(f, "\n  note: {note}")?;
+        }
+        Ok(())
     }
 }

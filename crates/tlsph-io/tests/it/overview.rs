@@ -115,3 +115,29 @@ fn a_polynomial_eos_that_softens_is_flagged() {
     assert_eq!(overview.bodies[0].stiffness_limits, (None, None));
     assert!(!overview.to_string().contains("warning"));
 }
+
+#[test]
+fn penalty_contact_without_hourglass_control_gets_a_note() {
+    // docs/scene-format.md, penalty contact: TLSPH surfaces pressed hard or sheared by
+    // friction zig-zag and let the partner dig in unless hourglass control is declared. The
+    // check says so for a total-Lagrangian scene with the penalty contact and no control, and
+    // stays silent once the control is declared or the formulation is updated-Lagrangian.
+    let with_contact = format!("{TWO_BLOCKS}\n[contact]\nlaw = \"penalty\"\n");
+    let notes = |text: &str| parse_scene(text, "blocks.toml").unwrap().overview().notes;
+    let advised = notes(&with_contact);
+    assert_eq!(advised.len(), 1, "{advised:?}");
+    assert!(advised[0].contains("[hourglass_control]"));
+    let overview = parse_scene(&with_contact, "blocks.toml")
+        .unwrap()
+        .overview();
+    assert!(overview.to_string().contains("\n  note: penalty contact"));
+    let controlled = format!("{with_contact}\n[hourglass_control]\ncoefficient = 1.0\n");
+    assert!(notes(&controlled).is_empty());
+    assert!(notes(TWO_BLOCKS).is_empty(), "no contact, no note");
+    let updated = with_contact.replace(
+        "formulation = \"total-lagrangian-corrected\"",
+        "formulation = \"updated-lagrangian\"",
+    );
+    assert_ne!(updated, with_contact);
+    assert!(notes(&updated).is_empty());
+}
