@@ -1,6 +1,7 @@
 //! Fuller's particle-type penalty contact with friction (numerics.md §12.1): the elastic impact
 //! stress and rebound of two bars, momentum to round-off, Coulomb's impulse ratio in a sliding
-//! impact, frictionless sliding, determinism, and the setup checks.
+//! impact, frictionless sliding, a block resting on a deformable base, stick and slip on an
+//! incline, determinism, and the setup checks.
 
 use super::contact::{approaching_bars, body, body_velocity, config, materials, V};
 use super::lattice;
