@@ -30,7 +30,7 @@ enum Command {
         /// Output folder; overrides `[output] dir` of the scene.
         #[arg(long, short)]
         output: Option<PathBuf>,
-        /// No progress bar and no summary line.
+        /// No set-up notes, no progress bar and no summary line.
         #[arg(long, short)]
         quiet: bool,
     },
@@ -79,6 +79,11 @@ fn run(path: PathBuf, output: Option<PathBuf>, quiet: bool) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if !quiet {
+        for note in scene.overview().notes {
+            eprintln!("note: {note}");
+        }
+    }
     let dir = output.unwrap_or_else(|| scene.output.dir.clone());
     let mut progress = LazyProgress::new(quiet);
     let result = run_scene_to_dir(&scene, &dir, &mut |t, end| progress.update(t, end));

@@ -184,3 +184,34 @@ fn the_example_scene_is_valid() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn run_prints_the_set_up_notes_of_check_unless_quiet() {
+    // The advice `tlsph check` gives (here: contact between total-Lagrangian bodies without
+    // hourglass control) reaches a user who only runs the scene, on stderr before the run;
+    // `--quiet` silences it with the rest, and the run goes ahead either way.
+    let tmp = tempfile::tempdir().unwrap();
+    let with_contact = SCENE.replace(
+        "[[probe]]",
+        "[[body]]\nname = \"flyer\"\nmaterial = \"plate\"\nbox = { min = [1.52], max = [1.7] }\n\
+         spacing = 0.01\n\n[contact]\nscale = 0.2\n\n[[probe]]",
+    );
+    assert_ne!(with_contact, SCENE);
+    fs::write(tmp.path().join("scene.toml"), &with_contact).unwrap();
+    let run = |quiet: bool| {
+        let mut args = vec!["run", "scene.toml"];
+        if quiet {
+            args.push("--quiet");
+        }
+        let out = tlsph().current_dir(tmp.path()).args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{stderr}");
+        stderr
+    };
+    let stderr = run(false);
+    assert!(
+        stderr.contains("note: potential contact between total-Lagrangian bodies"),
+        "{stderr}"
+    );
+    assert!(!run(true).contains("note:"));
+}

@@ -117,27 +117,39 @@ fn a_polynomial_eos_that_softens_is_flagged() {
 }
 
 #[test]
-fn penalty_contact_without_hourglass_control_gets_a_note() {
-    // docs/scene-format.md, penalty contact: TLSPH surfaces pressed hard or sheared by
-    // friction zig-zag and let the partner dig in unless hourglass control is declared. The
-    // check says so for a total-Lagrangian scene with the penalty contact and no control, and
-    // stays silent once the control is declared or the formulation is updated-Lagrangian.
-    let with_contact = format!("{TWO_BLOCKS}\n[contact]\nlaw = \"penalty\"\n");
+fn contact_without_hourglass_control_gets_a_note() {
+    // docs/scene-format.md, contact: TLSPH surfaces in contact zig-zag and let the partner dig
+    // in (penalty law: pressed hard or sheared by friction) or sink in (potential law: under
+    // any steady load) unless hourglass control is declared. The check says so, naming the
+    // law, for a total-Lagrangian scene with contact and no control, and stays silent once the
+    // control is declared or the formulation is updated-Lagrangian.
     let notes = |text: &str| parse_scene(text, "blocks.toml").unwrap().overview().notes;
-    let advised = notes(&with_contact);
-    assert_eq!(advised.len(), 1, "{advised:?}");
-    assert!(advised[0].contains("[hourglass_control]"));
-    let overview = parse_scene(&with_contact, "blocks.toml")
-        .unwrap()
-        .overview();
-    assert!(overview.to_string().contains("\n  note: penalty contact"));
-    let controlled = format!("{with_contact}\n[hourglass_control]\ncoefficient = 1.0\n");
-    assert!(notes(&controlled).is_empty());
+    for (law, start) in [
+        ("penalty", "penalty contact"),
+        ("potential", "potential contact"),
+    ] {
+        let keys = if law == "potential" {
+            "scale = 0.2\n"
+        } else {
+            ""
+        };
+        let with_contact = format!("{TWO_BLOCKS}\n[contact]\nlaw = \"{law}\"\n{keys}");
+        let advised = notes(&with_contact);
+        assert_eq!(advised.len(), 1, "{advised:?}");
+        assert!(advised[0].starts_with(start), "{advised:?}");
+        assert!(advised[0].contains("[hourglass_control]"));
+        let overview = parse_scene(&with_contact, "blocks.toml")
+            .unwrap()
+            .overview();
+        assert!(overview.to_string().contains(&format!("\n  note: {start}")));
+        let controlled = format!("{with_contact}\n[hourglass_control]\ncoefficient = 1.0\n");
+        assert!(notes(&controlled).is_empty());
+        let updated = with_contact.replace(
+            "formulation = \"total-lagrangian-corrected\"",
+            "formulation = \"updated-lagrangian\"",
+        );
+        assert_ne!(updated, with_contact);
+        assert!(notes(&updated).is_empty(), "{law}");
+    }
     assert!(notes(TWO_BLOCKS).is_empty(), "no contact, no note");
-    let updated = with_contact.replace(
-        "formulation = \"total-lagrangian-corrected\"",
-        "formulation = \"updated-lagrangian\"",
-    );
-    assert_ne!(updated, with_contact);
-    assert!(notes(&updated).is_empty());
 }

@@ -1,8 +1,9 @@
 //! Particle-to-particle contact (numerics.md §12.2): momentum exact, elastic impact stress,
-//! rebound, energy closure with the booked column, determinism, the time-step vote and the
-//! setup checks.
+//! rebound, energy closure with the booked column, determinism, the time-step vote, the
+//! setup checks, self-contact, and a block resting on a deformable base.
 
 use super::lattice;
+use super::penalty_contact::block_on_base;
 use tlsph_materials::LinearElastic;
 use tlsph_math::Vector;
 use tlsph_solver::{
@@ -466,4 +467,49 @@ fn self_contact_is_refused_for_the_updated_lagrangian_formulation() {
         Err(other) => panic!("expected a contact.pairs error, got {other}"),
         Ok(_) => panic!("expected a contact.pairs error, got a valid simulation"),
     }
+}
+
+#[test]
+fn a_block_resting_on_a_deformable_base_in_potential_contact_needs_hourglass_control() {
+    // The block of `penalty_contact::block_on_base` under g = 0.001 with the potential law
+    // (a = 0.2, n = 4) in place of the penalty. Its pair forces are central, so a pressed pair
+    // pushes its particles sideways as soon as they are not exactly above each other, and
+    // TLSPH's alternating (zig-zag) surface mode has no stiffness to resist. Without hourglass
+    // control the base's top row opened into pairs and the block sank between them: 1.81 dx on
+    // average, its lowest particle 1.27 dx below the base's highest (measured; in a CLI scene
+    // of the same geometry at a = 2 and a = 0.02 alike, and at g = 0.0001 more slowly). With
+    // hourglass control (α = 1) the block settles 0.074 dx (its own and the base's elastic
+    // compression, the contact overlap and the ramp's vibration) and its lowest particle stays
+    // 0.95 dx above the base's highest: bounds 0.2 dx and 0.5 dx.
+    let mut model = block_on_base(Vector::<2>::new(0.0, -0.001), 0.0, 300.0);
+    model.effects.penalty_contact = None;
+    model.effects.contact = contact(0.2);
+    model.effects.hourglass_control = Some(1.0);
+    let mut sim = Simulation::new(model).unwrap();
+    let (base, block) = (sim.bodies()[0].range.clone(), sim.bodies()[1].range.clone());
+    let height =
+        |s: &Simulation<2>, i: usize| s.initial_position(i)[1] + s.total_displacement(i)[1];
+    let (mut settlement, mut clearance) = (0.0_f64, f64::INFINITY);
+    sim.run(|s, _| {
+        let n = block.len() as f64;
+        let mean_drop = -block
+            .clone()
+            .map(|i| s.total_displacement(i)[1])
+            .sum::<f64>()
+            / n;
+        settlement = settlement.max(mean_drop);
+        let lowest = block
+            .clone()
+            .map(|i| height(s, i))
+            .fold(f64::INFINITY, f64::min);
+        let highest = base
+            .clone()
+            .map(|i| height(s, i))
+            .fold(f64::NEG_INFINITY, f64::max);
+        clearance = clearance.min(lowest - highest);
+    })
+    .unwrap();
+    eprintln!("settlement {settlement:.3} dx, clearance {clearance:.3} dx");
+    assert!(settlement < 0.2, "settlement {settlement}");
+    assert!(clearance > 0.5, "clearance {clearance}");
 }

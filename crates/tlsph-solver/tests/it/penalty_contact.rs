@@ -306,7 +306,7 @@ fn penalty_contact_setup_errors_name_the_field() {
 /// row is clamped, pressed onto it by a body force on the block only, `gravity`, raised over a
 /// smooth ramp of 100 time units (about 17 wave transits of the block), in penalty contact with
 /// friction `friction`; h = 1.5Δx, CFL 0.3.
-fn block_on_base(gravity: Vector<2>, friction: f64, end_time: f64) -> Model<2> {
+pub(super) fn block_on_base(gravity: Vector<2>, friction: f64, end_time: f64) -> Model<2> {
     use tlsph_solver::{BodyForceDescription, RampShape, VelocityRamp};
     let dx = 1.0;
     let base = lattice([40, 6], dx);
