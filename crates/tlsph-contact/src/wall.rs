@@ -1,6 +1,8 @@
 //! A fixed rigid plane (e.g. an anvil): a penalty spring pushes back every particle whose
 //! half-spacing sphere penetrates the plane, and optional Coulomb friction on the touching
-//! particles (numerics.md §13 `[C]`). Depends on current positions and velocities only.
+//! particles (numerics.md §13 `[C]`). Depends on current positions and velocities only. A
+//! plane moving by d(t) at v_w is this plane seen from the wall: pass x − d(t) and v − v_w
+//! (the solver's moving walls do so).
 
 use tlsph_math::Vector;
 

@@ -15,7 +15,7 @@ use tlsph_solver::{
     ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
     ContactDescription, EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model,
     ParticleField, PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport,
-    SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp, WallDescription,
+    SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp, WallDescription, WallMotion,
 };
 use toml::Spanned;
 
@@ -616,11 +616,51 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             Some(mu) => ctx.non_negative(mu, &format!("wall[{name}].friction"))?,
             None => 0.0,
         };
+        let ramp = parse_ramp(ctx, &w.ramp_time, &w.ramp_shape, &|key: &str| {
+            format!("wall[{name}].{key}")
+        })?;
+        let motion = match &w.velocity {
+            Some(v) => {
+                let velocity = ctx.vector::<D>(v, &format!("wall[{name}].velocity"))?;
+                // A wall that lies along a symmetry plane's normal and slides along it would
+                // slide the other way in the mirrored half: with friction, not a symmetric
+                // model (frictionless, the sliding is not felt; a wall across the normal is
+                // mirrored into a second wall, moving as its mirror image).
+                let sliding_across_a_mirror = file.symmetry_plane.iter().find(|p| {
+                    axis_index(p.axis.get_ref()).is_some_and(|a| {
+                        a < D && unit[a] == 0.0 && velocity[a] != 0.0 && friction > 0.0
+                    })
+                });
+                if let Some(plane) = sliding_across_a_mirror {
+                    return Err(ctx.error(
+                        &v.span(),
+                        &format!("wall[{name}].velocity"),
+                        format!(
+                            "slides along {}, the normal of a symmetry plane: its friction would drag the mirrored half the other way, so the model is not symmetric",
+                            plane.axis.get_ref()
+                        ),
+                    ));
+                }
+                Some(WallMotion { velocity, ramp })
+            }
+            None => {
+                if let Some(time) = &w.ramp_time {
+                    return Err(ctx.error(
+                        &time.span(),
+                        &format!("wall[{name}].ramp_time"),
+                        "a fixed wall has nothing to ramp; give a `velocity` or drop the key"
+                            .into(),
+                    ));
+                }
+                None
+            }
+        };
         effects.walls.push(WallDescription {
             name,
             point,
             normal,
             friction,
+            motion,
         });
     }
     for plane in &file.symmetry_plane {
@@ -1915,7 +1955,7 @@ fn shape_of<const D: usize>(
     ))
 }
 
-/// `ramp_time` / `ramp_shape` of a boundary or the body force: a [`VelocityRamp`] (smooth
+/// `ramp_time` / `ramp_shape` of a boundary, a wall or the body force: a [`VelocityRamp`] (smooth
 /// unless `"linear"`), or `None` without `ramp_time`; `field` names a key of the table.
 fn parse_ramp(
     ctx: &Context<'_>,

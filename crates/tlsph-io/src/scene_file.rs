@@ -119,7 +119,8 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid fixed plane, frictionless unless `friction` is given.
+/// `[[wall]]`: a rigid plane, frictionless unless `friction` is given, fixed unless
+/// `velocity` is given (with an optional start-up ramp).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
@@ -127,6 +128,9 @@ pub(crate) struct WallTable {
     pub point: Spanned<Vec<f64>>,
     pub normal: Spanned<Vec<f64>>,
     pub friction: Option<Spanned<f64>>,
+    pub velocity: Option<Spanned<Vec<f64>>>,
+    pub ramp_time: Option<Spanned<f64>>,
+    pub ramp_shape: Option<Spanned<String>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

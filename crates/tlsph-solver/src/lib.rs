@@ -38,7 +38,7 @@ pub use model::{
     FailureModel, Formulation, InitialTimeStep, MaterialDescription, MaterialModel, Model,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal, VelocityRamp,
-    WallDescription, INITIAL_YIELD_TOLERANCE,
+    WallDescription, WallMotion, INITIAL_YIELD_TOLERANCE,
 };
 pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -399,6 +399,25 @@ impl VelocityRamp {
         }
     }
 
+    /// Integral ∫₀ᵗ r(s/T) ds of the factor \[s\]: the distance travelled by time `t` per unit
+    /// of the full velocity; t − T/2 once the ramp is over, for both shapes.
+    pub fn integral(&self, t: f64) -> f64 {
+        let big_t = self.duration;
+        if t <= 0.0 {
+            return 0.0;
+        }
+        if t >= big_t {
+            return t - 0.5 * big_t;
+        }
+        match self.shape {
+            RampShape::Linear => t * t / (2.0 * big_t),
+            RampShape::Smooth => {
+                let pi = std::f64::consts::PI;
+                0.5 * (t - big_t / pi * (pi * t / big_t).sin())
+            }
+        }
+    }
+
     /// Rate d r(t/T)/dt of the factor at time `t` \[1/s\] (0 outside the ramp).
     pub fn rate(&self, t: f64) -> f64 {
         let s = t / self.duration;
@@ -414,7 +433,8 @@ impl VelocityRamp {
     }
 }
 
-/// A rigid fixed plane (numerics.md §13; an anvil), frictionless or with Coulomb friction.
+/// A rigid plane (numerics.md §13; an anvil, or with [`WallMotion`] a platen), frictionless or
+/// with Coulomb friction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WallDescription<const D: usize> {
     /// Name (its reaction is reported as `wall_<name>`).
@@ -425,6 +445,32 @@ pub struct WallDescription<const D: usize> {
     pub normal: Vector<D>,
     /// Coulomb friction coefficient μ ≥ 0 (0: frictionless, no friction effect is built).
     pub friction: f64,
+    /// Translation of the plane; `None`: the wall is fixed.
+    pub motion: Option<WallMotion<D>>,
+}
+
+/// Translation of a rigid wall at a prescribed velocity (a platen, a piston, a conveyor
+/// belt; ours, not in the theses): v_w(t) = r(t) v with the optional start-up r of a
+/// [`VelocityRamp`], so the plane's point is at X_w + v ∫₀ᵗ r once it has started.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallMotion<const D: usize> {
+    /// Full velocity v of the plane \[m/s\] (any direction: along the normal it presses or
+    /// withdraws, across it the wall slides under the particles).
+    pub velocity: Vector<D>,
+    /// Start-up of the velocity; `None`: the full velocity from t = 0.
+    pub ramp: Option<VelocityRamp>,
+}
+
+impl<const D: usize> WallMotion<D> {
+    /// Velocity of the plane at time `t` \[m/s\].
+    pub fn velocity_at(&self, t: f64) -> Vector<D> {
+        self.velocity * self.ramp.map_or(1.0, |r| r.factor(t))
+    }
+
+    /// Displacement of the plane from its position at t = 0, at time `t` \[m\].
+    pub fn displacement_at(&self, t: f64) -> Vector<D> {
+        self.velocity * self.ramp.map_or(t, |r| r.integral(t))
+    }
 }
 
 /// A symmetry plane x_axis = position, modelled by mirror (ghost) particles

@@ -1934,7 +1934,23 @@ fn build_effects<const D: usize>(
                 ),
             });
         }
-        let rigid = RigidWall::new(&wall.name, wall.point, wall.normal, &h, &c0, &dx);
+        if let Some(motion) = &wall.motion {
+            if !motion.velocity.iter().all(|v| v.is_finite()) {
+                return Err(SetupError::InvalidConfig {
+                    field: "wall",
+                    message: format!("wall `{}` needs a finite velocity", wall.name),
+                });
+            }
+            if let Some(ramp) = &motion.ramp {
+                ramp.validate()
+                    .map_err(|message| SetupError::InvalidConfig {
+                        field: "wall",
+                        message: format!("wall `{}`: {message}", wall.name),
+                    })?;
+            }
+        }
+        let plane = (wall.point, wall.normal);
+        let rigid = RigidWall::new(&wall.name, plane, wall.motion, &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
         let friction = (wall.friction > 0.0).then(|| rigid.friction(wall.friction));
         effects.push(BookedEffect::new(Box::new(rigid)));

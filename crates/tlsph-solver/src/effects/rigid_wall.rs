@@ -1,9 +1,17 @@
-//! Rigid fixed plane (e.g. an anvil): a penalty force pushes back every particle whose
-//! half-spacing sphere penetrates the plane (numerics.md §13 `[C]`). Depends on current
-//! positions only. With a friction coefficient the wall also carries a Coulomb friction
-//! effect of its own ([`WallFriction`]), booked and reported separately.
+//! Rigid plane (e.g. an anvil): a penalty force pushes back every particle whose half-spacing
+//! sphere penetrates the plane (numerics.md §13 `[C]`). Depends on current positions only.
+//! With a friction coefficient the wall also carries a Coulomb friction effect of its own
+//! ([`WallFriction`]), booked and reported separately.
+//!
+//! A moving wall ([`WallMotion`]) is the same plane translated by d(t): the penetration of a
+//! particle at x is that of x − d(t) against the plane at rest, and friction acts on the
+//! velocity relative to the wall's. Its column is the stored energy less the work the wall has
+//! done on the particles, Σ ½ m k δ² − ∫ F·v_w dt (trapezoidal in time over the steps, F the
+//! wall's whole force on the particles): the spring's energy changes by −F·(v − v_w), so
+//! kinetic + internal + this column is constant, as for a fixed wall.
 
 use super::{Effect, EffectContext};
+use crate::model::WallMotion;
 use rayon::prelude::*;
 use std::sync::Arc;
 use tlsph_contact::{wall_friction_acceleration, RigidPlane};
@@ -16,25 +24,30 @@ const MIN_PER_TASK: usize = 1024;
 const CHUNK: usize = 4096;
 
 /// A rigid frictionless plane through `point` with unit `normal` pointing into the half-space
-/// where particles may be.
+/// where particles may be, fixed or moving with `motion`.
 #[derive(Debug, Clone)]
 pub struct RigidWall<const D: usize> {
     name: String,
     geometry: Arc<RigidPlane<D>>,
+    motion: Option<WallMotion<D>>,
     resultant: Vector<D>,
     /// Σ ½ k δ² of the last evaluation \[J\].
     stored: f64,
-    /// Per-chunk partial sums (reused every step).
-    chunk_sums: Vec<f64>,
+    /// Moving wall: work ∫ F·v_w dt done on the particles up to the last evaluation \[J\],
+    /// and the time and power F·v_w of that evaluation (the trapezoid's left end).
+    work: f64,
+    last_power: Option<(f64, f64)>,
+    /// Per-chunk partial sums (reused every step): stored energy and whole force.
+    chunk_sums: Vec<(f64, Vector<D>)>,
 }
 
 impl<const D: usize> RigidWall<D> {
     /// Builds the wall for particles whose bodies have smoothing lengths `h`, sound speeds
-    /// `c0` and spacings `dx` (per particle).
+    /// `c0` and spacings `dx` (per particle); `motion` moves it, `None` holds it fixed.
     pub(crate) fn new(
         name: &str,
-        point: Vector<D>,
-        normal: Vector<D>,
+        (point, normal): (Vector<D>, Vector<D>),
+        motion: Option<WallMotion<D>>,
         h: &[f64],
         c0: &[f64],
         dx: &[f64],
@@ -43,8 +56,11 @@ impl<const D: usize> RigidWall<D> {
         Self {
             name: format!("wall_{name}"),
             geometry: Arc::new(geometry),
+            motion,
             resultant: Vector::zeros(),
             stored: 0.0,
+            work: 0.0,
+            last_power: None,
             chunk_sums: Vec::new(),
         }
     }
@@ -55,10 +71,16 @@ impl<const D: usize> RigidWall<D> {
         WallFriction {
             name: format!("{}_friction", self.name),
             geometry: Arc::clone(&self.geometry),
+            motion: self.motion,
             coefficient,
             resultant: Vector::zeros(),
         }
     }
+}
+
+/// The wall's displacement from its place at t = 0, at time `t` (zero for a fixed wall).
+fn wall_shift<const D: usize>(motion: &Option<WallMotion<D>>, t: f64) -> Vector<D> {
+    motion.map_or(Vector::zeros(), |m| m.displacement_at(t))
 }
 
 impl<const D: usize> Effect<D> for RigidWall<D> {
@@ -73,28 +95,42 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
         let p = ctx.particles;
         let wall = &*self.geometry;
-        let position = |i: usize| p.positions0[i] + p.displacements[i];
-        // One pass: the acceleration k δ n̂ and the stored energy Σ ½ m k δ², summed in fixed
-        // chunks (thread-count independent).
+        let shift = wall_shift(&self.motion, ctx.time);
+        let position = |i: usize| p.positions0[i] + p.displacements[i] - shift;
+        // One pass: the acceleration k δ n̂, the stored energy Σ ½ m k δ² and the whole force
+        // Σ m k δ n̂, summed in fixed chunks (thread-count independent).
         out.par_chunks_mut(CHUNK)
             .enumerate()
             .map(|(c, chunk)| {
                 let mut stored = 0.0;
+                let mut force = 0.0;
                 for (k, a) in chunk.iter_mut().enumerate() {
                     let i = c * CHUNK + k;
                     let delta = wall.penetration(i, position(i));
                     let a_n = wall.stiffness_per_mass(i) * delta;
                     *a = wall.normal() * a_n;
                     stored += 0.5 * p.masses[i] * a_n * delta;
+                    force += p.masses[i] * a_n;
                 }
-                stored
+                (stored, wall.normal() * force)
             })
             .collect_into_vec(&mut self.chunk_sums);
-        self.stored = self.chunk_sums.iter().sum();
+        self.stored = self.chunk_sums.iter().map(|(e, _)| e).sum();
+        if let Some(motion) = &self.motion {
+            let force = self
+                .chunk_sums
+                .iter()
+                .fold(Vector::<D>::zeros(), |f, (_, cf)| f + cf);
+            let power = force.dot(&motion.velocity_at(ctx.time));
+            if let Some((t, last)) = self.last_power {
+                self.work += 0.5 * (last + power) * (ctx.time - t);
+            }
+            self.last_power = Some((ctx.time, power));
+        }
     }
 
     fn stored_energy(&self) -> Option<f64> {
-        Some(self.stored)
+        Some(self.stored - self.work)
     }
 
     fn resultant(&self) -> Option<Vector<D>> {
@@ -110,13 +146,16 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
 /// `tlsph_contact::wall_friction_acceleration`), applied right after the wall's normal force in
 /// the same step, so it sees this step's normal kick: the Coulomb force μ m a_n against the
 /// sliding direction, capped at the force that stops the tangential motion within the kick.
-/// Its work −∫ Σ f·v dt (all dissipated) is booked in the `wall_<name>_friction` column; its
-/// resultant, the tangential force of the wall on the particles, is reported as
-/// `wall_<name>_friction`.
+/// Its work −∫ Σ f·v dt (dissipated, less what a moving wall puts in) is booked in the
+/// `wall_<name>_friction` column; its resultant, the tangential force of the wall on the
+/// particles, is reported as `wall_<name>_friction`. On a moving wall it acts on the velocity
+/// relative to the wall's at the middle of the kick, t^n + ½Δt* (of the step's; exact once
+/// the wall's start-up is over).
 #[derive(Debug, Clone)]
 pub struct WallFriction<const D: usize> {
     name: String,
     geometry: Arc<RigidPlane<D>>,
+    motion: Option<WallMotion<D>>,
     /// Friction coefficient μ > 0.
     coefficient: f64,
     resultant: Vector<D>,
@@ -135,12 +174,18 @@ impl<const D: usize> Effect<D> for WallFriction<D> {
         let p = ctx.particles;
         let wall = &*self.geometry;
         let (mu, kick) = (self.coefficient, ctx.kick);
+        let shift = wall_shift(&self.motion, ctx.time);
+        let wall_velocity = self
+            .motion
+            .map_or(Vector::zeros(), |m| m.velocity_at(ctx.time + 0.5 * kick));
         out.par_iter_mut()
             .enumerate()
             .with_min_len(MIN_PER_TASK)
             .for_each(|(i, a)| {
-                let a_n = wall.normal_acceleration(i, p.positions0[i] + p.displacements[i]);
-                *a = wall_friction_acceleration(a_n, p.velocities[i], wall.normal(), mu, kick);
+                let x = p.positions0[i] + p.displacements[i] - shift;
+                let a_n = wall.normal_acceleration(i, x);
+                let sliding = p.velocities[i] - wall_velocity;
+                *a = wall_friction_acceleration(a_n, sliding, wall.normal(), mu, kick);
             });
     }
 

@@ -8,6 +8,7 @@ mod contact_symmetry;
 mod damage;
 mod effects;
 mod long_runs;
+mod moving_wall;
 mod penalty_contact;
 mod plasticity;
 mod prescribed;

@@ -32,6 +32,7 @@ fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64) -> Model<
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: mu,
+        motion: None,
     });
     m
 }
