@@ -12,7 +12,8 @@
 //!   (numerics.md §12.1, F §4.3–4.4), with the surface test [`is_surface`] and the outward
 //!   normal [`OutwardNormal`] it needs.
 //! * [`RigidPlane`]: a fixed rigid plane (an anvil) pushing back particles by a penalty
-//!   spring, and its Coulomb friction [`wall_friction_acceleration`] (numerics.md §13).
+//!   spring, and its Coulomb friction [`wall_friction_acceleration`] with static and kinetic
+//!   [`FrictionCoefficients`] (numerics.md §13).
 //!
 //! Every law is a function of one pair (or one particle and the plane), evaluated identically
 //! from both ends, so a solver that gathers per particle gets equal and opposite forces bit
@@ -46,7 +47,9 @@ pub use penalty::{is_surface, OutwardNormal, PenaltyLaw, SURFACE_FRACTION};
 pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
-pub use wall::{wall_friction_acceleration, RigidPlane, WALL_STIFFNESS_FACTOR};
+pub use wall::{
+    wall_friction_acceleration, FrictionCoefficients, RigidPlane, WALL_STIFFNESS_FACTOR,
+};
 
 /// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list
 /// holds every pair within (largest reach + skin) and is rebuilt once any participant has

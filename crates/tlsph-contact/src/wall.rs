@@ -65,32 +65,58 @@ impl<const D: usize> RigidPlane<D> {
     }
 }
 
-/// Coulomb friction of a rigid, fixed surface on one touching particle (numerics.md §13 `[C]`).
+/// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding and the static
+/// μ_s ≥ μ_k that bounds the force holding a particle at rest (numerics.md §13 `[C]`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionCoefficients {
+    /// Kinetic coefficient μ_k ≥ 0.
+    pub kinetic: f64,
+    /// Static coefficient μ_s ≥ μ_k.
+    pub static_coefficient: f64,
+}
+
+impl FrictionCoefficients {
+    /// One coefficient μ for both sticking and sliding.
+    pub fn single(mu: f64) -> Self {
+        Self {
+            kinetic: mu,
+            static_coefficient: mu,
+        }
+    }
+}
+
+/// Coulomb friction of a rigid surface on one touching particle (numerics.md §13 `[C]`).
 ///
 /// With a_n the normal acceleration of the wall's spring, v* the particle's velocity after the
-/// step's earlier kicks and v*_t its part tangential to the unit `normal`, the friction
-/// acceleration is
+/// step's earlier kicks (relative to the surface's) and v*_t its part tangential to the unit
+/// `normal`, the friction acceleration is
 ///
-///   a_t = −min(μ a_n, |v*_t| / Δt_kick) v*_t / |v*_t|,
+///   a_t = −v*_t / Δt_kick                 if |v*_t| / Δt_kick ≤ μ_s a_n (the particle sticks),
+///   a_t = −μ_k a_n v*_t / |v*_t|          otherwise (it slides),
 ///
-/// the Coulomb force against the sliding direction, unless a smaller force stops the
-/// tangential motion within this kick, in which case exactly that force is applied and the
-/// particle sticks. It needs no slip regularisation, no history and no time-step limit, and
-/// never reverses a particle's sliding direction. Zero when the particle does not touch
-/// (a_n = 0) or does not slide.
+/// so a particle is held while the force that stops its tangential motion within this kick is
+/// at most μ_s times its normal force, and slides against the kinetic force μ_k m a_n when
+/// more is needed. With μ_s = μ_k this is a_t = −min(μ a_n, |v*_t|/Δt) v̂*_t. It needs no slip
+/// regularisation, no history and no time-step limit, and never reverses a particle's sliding
+/// direction (μ_k ≤ μ_s). Zero when the particle does not touch (a_n = 0) or does not slide.
 #[inline]
 pub fn wall_friction_acceleration<const D: usize>(
     normal_acceleration: f64,
     velocity: Vector<D>,
     normal: Vector<D>,
-    coefficient: f64,
+    friction: FrictionCoefficients,
     kick: f64,
 ) -> Vector<D> {
     let v_t = velocity - normal * velocity.dot(&normal);
     let speed = v_t.norm();
-    if normal_acceleration > 0.0 && speed > 0.0 {
-        v_t * (-(coefficient * normal_acceleration).min(speed / kick) / speed)
-    } else {
-        Vector::zeros()
+    if !(normal_acceleration > 0.0 && speed > 0.0) {
+        return Vector::zeros();
     }
+    let stopping = speed / kick;
+    let magnitude = if stopping <= friction.static_coefficient * normal_acceleration {
+        stopping
+    } else {
+        friction.kinetic * normal_acceleration
+    };
+    v_t * (-magnitude / speed)
 }

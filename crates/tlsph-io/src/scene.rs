@@ -616,6 +616,23 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             Some(mu) => ctx.non_negative(mu, &format!("wall[{name}].friction"))?,
             None => 0.0,
         };
+        let static_friction = match &w.static_friction {
+            Some(mu) => {
+                let field = format!("wall[{name}].static_friction");
+                let value = ctx.non_negative(mu, &field)?;
+                if value < friction {
+                    return Err(ctx.error(
+                        &mu.span(),
+                        &field,
+                        format!(
+                            "must be ≥ the (kinetic) `friction` {friction}: a particle held at rest resists at least as much as one sliding"
+                        ),
+                    ));
+                }
+                Some(value)
+            }
+            None => None,
+        };
         let ramp = parse_ramp(ctx, &w.ramp_time, &w.ramp_shape, &|key: &str| {
             format!("wall[{name}].{key}")
         })?;
@@ -628,7 +645,10 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 // mirrored into a second wall, moving as its mirror image).
                 let sliding_across_a_mirror = file.symmetry_plane.iter().find(|p| {
                     axis_index(p.axis.get_ref()).is_some_and(|a| {
-                        a < D && unit[a] == 0.0 && velocity[a] != 0.0 && friction > 0.0
+                        a < D
+                            && unit[a] == 0.0
+                            && velocity[a] != 0.0
+                            && static_friction.unwrap_or(friction) > 0.0
                     })
                 });
                 if let Some(plane) = sliding_across_a_mirror {
@@ -660,6 +680,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             point,
             normal,
             friction,
+            static_friction,
             motion,
         });
     }

@@ -128,6 +128,7 @@ pub(crate) struct WallTable {
     pub point: Spanned<Vec<f64>>,
     pub normal: Spanned<Vec<f64>>,
     pub friction: Option<Spanned<f64>>,
+    pub static_friction: Option<Spanned<f64>>,
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,

@@ -443,8 +443,12 @@ pub struct WallDescription<const D: usize> {
     pub point: Vector<D>,
     /// Normal pointing into the half-space where the particles are (need not be unit).
     pub normal: Vector<D>,
-    /// Coulomb friction coefficient μ ≥ 0 (0: frictionless, no friction effect is built).
+    /// Coulomb friction coefficient μ ≥ 0, kinetic when `static_friction` is given (0 and no
+    /// static coefficient: frictionless, no friction effect is built).
     pub friction: f64,
+    /// Static coefficient μ_s ≥ `friction` that bounds the force holding a particle at rest
+    /// (numerics.md §13 `[C]`); `None`: the same as `friction`.
+    pub static_friction: Option<f64>,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
 }

@@ -24,7 +24,7 @@ use crate::step::{
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
-use tlsph_contact::{PenaltyLaw, PotentialLaw};
+use tlsph_contact::{FrictionCoefficients, PenaltyLaw, PotentialLaw};
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
@@ -1934,6 +1934,16 @@ fn build_effects<const D: usize>(
                 ),
             });
         }
+        let static_friction = wall.static_friction.unwrap_or(wall.friction);
+        if !(static_friction.is_finite() && static_friction >= wall.friction) {
+            return Err(SetupError::InvalidConfig {
+                field: "wall",
+                message: format!(
+                    "wall `{}`: the static friction coefficient must be finite and ≥ the kinetic {}, got {static_friction}",
+                    wall.name, wall.friction
+                ),
+            });
+        }
         if let Some(motion) = &wall.motion {
             if !motion.velocity.iter().all(|v| v.is_finite()) {
                 return Err(SetupError::InvalidConfig {
@@ -1952,7 +1962,11 @@ fn build_effects<const D: usize>(
         let plane = (wall.point, wall.normal);
         let rigid = RigidWall::new(&wall.name, plane, wall.motion, &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
-        let friction = (wall.friction > 0.0).then(|| rigid.friction(wall.friction));
+        let coefficients = FrictionCoefficients {
+            kinetic: wall.friction,
+            static_coefficient: static_friction,
+        };
+        let friction = (static_friction > 0.0).then(|| rigid.friction(coefficients));
         effects.push(BookedEffect::new(Box::new(rigid)));
         if let Some(friction) = friction {
             effects.push(BookedEffect::new(Box::new(friction)));

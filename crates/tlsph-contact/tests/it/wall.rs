@@ -1,7 +1,9 @@
 //! The rigid plane's penalty spring and its Coulomb friction (numerics.md §13).
 
 use approx::assert_relative_eq;
-use tlsph_contact::{wall_friction_acceleration, RigidPlane, Vector, WALL_STIFFNESS_FACTOR};
+use tlsph_contact::{
+    wall_friction_acceleration, FrictionCoefficients, RigidPlane, Vector, WALL_STIFFNESS_FACTOR,
+};
 
 #[test]
 fn a_particle_is_pushed_back_by_its_half_spacing_penetration() {
@@ -35,10 +37,22 @@ fn a_particle_is_pushed_back_by_its_half_spacing_penetration() {
 fn wall_friction_is_coulomb_until_it_would_stop_the_particle() {
     let n = Vector::<3>::new(0.0, 0.0, 1.0);
     // Sliding fast: μ a_n against the tangential velocity, the normal part ignored.
-    let a = wall_friction_acceleration(10.0, Vector::<3>::new(3.0, 4.0, -2.0), n, 0.5, 1e-3);
+    let a = wall_friction_acceleration(
+        10.0,
+        Vector::<3>::new(3.0, 4.0, -2.0),
+        n,
+        FrictionCoefficients::single(0.5),
+        1e-3,
+    );
     assert_relative_eq!(a, Vector::<3>::new(-3.0, -4.0, 0.0), max_relative = 1e-14);
     // Sliding slowly: only what stops the motion within the kick (|v_t| / Δt = 1 < μ a_n).
-    let slow = wall_friction_acceleration(10.0, Vector::<3>::new(6e-4, 8e-4, 0.0), n, 0.5, 1e-3);
+    let slow = wall_friction_acceleration(
+        10.0,
+        Vector::<3>::new(6e-4, 8e-4, 0.0),
+        n,
+        FrictionCoefficients::single(0.5),
+        1e-3,
+    );
     assert_relative_eq!(
         slow,
         Vector::<3>::new(-0.6, -0.8, 0.0),
@@ -46,11 +60,56 @@ fn wall_friction_is_coulomb_until_it_would_stop_the_particle() {
     );
     // Not touching, or not sliding: nothing.
     assert_eq!(
-        wall_friction_acceleration(0.0, Vector::<3>::new(1.0, 0.0, 0.0), n, 0.5, 1e-3),
+        wall_friction_acceleration(
+            0.0,
+            Vector::<3>::new(1.0, 0.0, 0.0),
+            n,
+            FrictionCoefficients::single(0.5),
+            1e-3
+        ),
         Vector::<3>::zeros()
     );
     assert_eq!(
-        wall_friction_acceleration(10.0, Vector::<3>::new(0.0, 0.0, -1.0), n, 0.5, 1e-3),
+        wall_friction_acceleration(
+            10.0,
+            Vector::<3>::new(0.0, 0.0, -1.0),
+            n,
+            FrictionCoefficients::single(0.5),
+            1e-3
+        ),
         Vector::<3>::zeros()
     );
+}
+
+#[test]
+fn a_static_coefficient_holds_more_than_the_kinetic_one_slides_with() {
+    // μ_k = 0.3, μ_s = 0.6, a_n = 10, kick 1e-3: a particle is held while stopping it within
+    // the kick takes at most μ_s a_n = 6; beyond, it slides against μ_k a_n = 3, never the
+    // force that would have stopped it.
+    let n = Vector::<2>::new(0.0, 1.0);
+    let friction = FrictionCoefficients {
+        kinetic: 0.3,
+        static_coefficient: 0.6,
+    };
+    let at = |speed: f64| {
+        wall_friction_acceleration(10.0, Vector::<2>::new(speed, 0.0), n, friction, 1e-3)
+    };
+    // |v_t|/Δt = 5 ≤ 6: stopped exactly (with one coefficient 0.3 it would slide at −3).
+    assert_relative_eq!(at(5e-3).x, -5.0, max_relative = 1e-12);
+    assert_relative_eq!(
+        wall_friction_acceleration(
+            10.0,
+            Vector::<2>::new(5e-3, 0.0),
+            n,
+            FrictionCoefficients::single(0.3),
+            1e-3
+        )
+        .x,
+        -3.0,
+        max_relative = 1e-12
+    );
+    // At the limit it still holds; above it the kinetic force, below the stopping one.
+    assert_relative_eq!(at(6e-3).x, -6.0, max_relative = 1e-12);
+    assert_relative_eq!(at(7e-3).x, -3.0, max_relative = 1e-12);
+    assert_relative_eq!(at(-7e-3).x, 3.0, max_relative = 1e-12);
 }

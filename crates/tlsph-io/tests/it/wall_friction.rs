@@ -55,6 +55,16 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
         panic!("2D")
     };
     assert_eq!(model.effects.walls[0].friction, 0.5);
+    assert_eq!(model.effects.walls[0].static_friction, None);
+    let with_static = SLIDER.replace(
+        "friction = 0.5\n",
+        "friction = 0.5\nstatic_friction = 0.7\n",
+    );
+    let scene = parse_scene(&with_static, "slider.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert_eq!(model.effects.walls[0].static_friction, Some(0.7));
     let ramp = model.effects.body_force.as_ref().unwrap().ramp.unwrap();
     assert_eq!((ramp.duration, ramp.shape), (2.0, RampShape::Linear));
     // Without the keys: frictionless, and the full body force from t = 0.
@@ -76,6 +86,18 @@ fn friction_and_ramp_errors_name_the_field_and_line() {
             "friction = 0.5",
             "friction = -0.5",
             "wall[floor].friction",
+            "≥ 0",
+        ),
+        (
+            "friction = 0.5",
+            "friction = 0.5\nstatic_friction = 0.4",
+            "wall[floor].static_friction",
+            "≥ the (kinetic) `friction` 0.5",
+        ),
+        (
+            "friction = 0.5",
+            "friction = 0.5\nstatic_friction = -1.0",
+            "wall[floor].static_friction",
             "≥ 0",
         ),
         (
@@ -101,7 +123,8 @@ fn friction_and_ramp_errors_name_the_field_and_line() {
         let e = error_of(&text);
         assert_eq!(e.field, field, "{e}");
         assert!(e.message.contains(message), "{e}");
-        let needle = if to.is_empty() { "ramp_shape" } else { to };
+        // The key's own line (the last line of a replacement that adds one).
+        let needle = to.lines().last().unwrap_or("ramp_shape");
         assert_eq!(e.line, Some(line_of(&text, needle)), "{e}");
     }
 }

@@ -14,7 +14,7 @@ use super::{Effect, EffectContext};
 use crate::model::WallMotion;
 use rayon::prelude::*;
 use std::sync::Arc;
-use tlsph_contact::{wall_friction_acceleration, RigidPlane};
+use tlsph_contact::{wall_friction_acceleration, FrictionCoefficients, RigidPlane};
 use tlsph_math::Vector;
 
 /// Particles per rayon task of the wall loops.
@@ -65,14 +65,14 @@ impl<const D: usize> RigidWall<D> {
         }
     }
 
-    /// Coulomb friction with coefficient `coefficient` on this wall's contacts, as an effect
-    /// of its own named `wall_<name>_friction` (to be applied right after the wall).
-    pub(crate) fn friction(&self, coefficient: f64) -> WallFriction<D> {
+    /// Coulomb friction with `coefficients` on this wall's contacts, as an effect of its own
+    /// named `wall_<name>_friction` (to be applied right after the wall).
+    pub(crate) fn friction(&self, coefficients: FrictionCoefficients) -> WallFriction<D> {
         WallFriction {
             name: format!("{}_friction", self.name),
             geometry: Arc::clone(&self.geometry),
             motion: self.motion,
-            coefficient,
+            coefficients,
             resultant: Vector::zeros(),
         }
     }
@@ -144,8 +144,9 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
 
 /// Coulomb friction of a rigid wall (numerics.md §13 `[C]`,
 /// `tlsph_contact::wall_friction_acceleration`), applied right after the wall's normal force in
-/// the same step, so it sees this step's normal kick: the Coulomb force μ m a_n against the
-/// sliding direction, capped at the force that stops the tangential motion within the kick.
+/// the same step, so it sees this step's normal kick: the force that stops the tangential
+/// motion within the kick while it is at most μ_s m a_n, else the kinetic μ_k m a_n against the
+/// sliding direction.
 /// Its work −∫ Σ f·v dt (dissipated, less what a moving wall puts in) is booked in the
 /// `wall_<name>_friction` column; its resultant, the tangential force of the wall on the
 /// particles, is reported as `wall_<name>_friction`. On a moving wall it acts on the velocity
@@ -156,8 +157,8 @@ pub struct WallFriction<const D: usize> {
     name: String,
     geometry: Arc<RigidPlane<D>>,
     motion: Option<WallMotion<D>>,
-    /// Friction coefficient μ > 0.
-    coefficient: f64,
+    /// Kinetic and static friction coefficients (not both 0).
+    coefficients: FrictionCoefficients,
     resultant: Vector<D>,
 }
 
@@ -173,7 +174,7 @@ impl<const D: usize> Effect<D> for WallFriction<D> {
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
         let p = ctx.particles;
         let wall = &*self.geometry;
-        let (mu, kick) = (self.coefficient, ctx.kick);
+        let (mu, kick) = (self.coefficients, ctx.kick);
         let shift = wall_shift(&self.motion, ctx.time);
         let wall_velocity = self
             .motion

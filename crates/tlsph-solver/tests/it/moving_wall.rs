@@ -28,6 +28,7 @@ fn piston_into_bar(speed: f64, ramp: Option<VelocityRamp>, end_time: f64) -> Mod
         point: Vector::<1>::zeros(),
         normal: Vector::<1>::new(1.0),
         friction: 0.0,
+        static_friction: None,
         motion: Some(WallMotion {
             velocity: Vector::<1>::new(speed),
             ramp,
@@ -119,6 +120,7 @@ fn block_on_sliding_floor(v0: f64, floor: f64) -> Model<2> {
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: 0.5,
+        static_friction: None,
         motion: Some(WallMotion {
             velocity: Vector::<2>::new(floor, 0.0),
             ramp: None,
