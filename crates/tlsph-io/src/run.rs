@@ -489,10 +489,17 @@ fn swap_into_place(partial: &Path, dir: &Path) -> Result<(), RunError> {
 
 /// Writes a force history (`time`, then `<name>_force_x/y/z` for each named force) to `path`;
 /// nothing when the run has no such forces.
+/// Position of a moving wall at a time, padded to 3D.
+type WallTrack<'a> = (String, Box<dyn Fn(f64) -> tlsph_math::Vector3 + 'a>);
+
+/// Writes the forces `forces` picks from each sample, `<name>_force_x/y/z`, then the
+/// displacement of each of `tracks` at the sample's time, `<name>_displacement_x/y/z`; nothing
+/// without forces.
 fn write_forces(
     path: &Path,
     diagnostics: &[Diagnostics],
     forces: impl Fn(&Diagnostics) -> &Vec<(String, tlsph_math::Vector3)>,
+    tracks: &[WallTrack<'_>],
 ) -> Result<(), RunError> {
     let Some(first) = diagnostics.first().filter(|d| !forces(d).is_empty()) else {
         return Ok(());
@@ -501,14 +508,37 @@ fn write_forces(
     for (n, _) in forces(first) {
         header.extend(["x", "y", "z"].map(|c| format!("{n}_force_{c}")));
     }
+    for (n, _) in tracks {
+        header.extend(["x", "y", "z"].map(|c| format!("{n}_displacement_{c}")));
+    }
     let rows = diagnostics.iter().map(|d| {
         let mut row = vec![d.time];
         for (_, f) in forces(d) {
             row.extend([f.x, f.y, f.z]);
         }
+        for (_, track) in tracks {
+            let u = track(d.time);
+            row.extend([u.x, u.y, u.z]);
+        }
         row
     });
     write_csv(path, &header, rows)
+}
+
+/// The moving walls of `model`, `wall_<name>` with the displacement of the plane from its
+/// place at t = 0 (`WallMotion::displacement_at`, what the solver shifts the plane by).
+fn wall_tracks<const D: usize>(model: &Model<D>) -> Vec<WallTrack<'_>> {
+    model
+        .effects
+        .walls
+        .iter()
+        .filter_map(|w| {
+            let motion = w.motion.as_ref()?;
+            let track: Box<dyn Fn(f64) -> tlsph_math::Vector3> =
+                Box::new(move |t| tlsph_math::vector_to_3d(&motion.displacement_at(t)));
+            Some((format!("wall_{}", w.name), track))
+        })
+        .collect()
 }
 
 /// Writes the run's files into the working folder `partial` (made by [`prepare_partial`],
@@ -554,12 +584,23 @@ fn write_run_folder(
         row
     });
     write_csv(&partial.join("energy.csv"), &energy_header, energy_rows)?;
-    write_forces(&partial.join("walls.csv"), &record.diagnostics, |d| {
-        &d.effect_forces
-    })?;
-    write_forces(&partial.join("boundaries.csv"), &record.diagnostics, |d| {
-        &d.boundary_forces
-    })?;
+    let tracks = match &scene.model {
+        DimensionModel::One(m) => wall_tracks(m),
+        DimensionModel::Two(m) => wall_tracks(m),
+        DimensionModel::Three(m) => wall_tracks(m),
+    };
+    write_forces(
+        &partial.join("walls.csv"),
+        &record.diagnostics,
+        |d| &d.effect_forces,
+        &tracks,
+    )?;
+    write_forces(
+        &partial.join("boundaries.csv"),
+        &record.diagnostics,
+        |d| &d.boundary_forces,
+        &[],
+    )?;
     let momentum_rows = record.diagnostics.iter().map(|d| {
         let (p, l) = (d.linear_momentum, d.angular_momentum);
         vec![d.time, p.x, p.y, p.z, l.x, l.y, l.z]

@@ -169,9 +169,9 @@ fn a_friction_run_writes_its_force_and_energy_columns_and_the_total_closes() {
 fn a_sliding_floor_parses_drags_the_block_along_and_the_total_closes() {
     // The block of `SLIDER` at rest on a floor that slides at −0.05: seen from the floor, it
     // is `SLIDER`'s block braked from 0.05, so its velocity less the floor's matches that
-    // run's velocity. The runs take slightly different steps (the CFL step counts each
-    // particle's own speed): measured 1.2e-5 of 0.05 apart at t = 6 with the block still
-    // sliding at half its speed; bound 1e-3. The floor's work (its normal and friction
+    // run's velocity (and `walls.csv` gives the floor's displacement). The runs take slightly
+    // different steps (the CFL step counts each particle's own speed): measured 1.2e-5 of
+    // 0.05 apart at t = 6 with the block still sliding at half its speed; bound 1e-3. The floor's work (its normal and friction
     // forces) is booked in its columns, so the total stays within 1e-3 of the relative
     // kinetic energy (measured 2.6e-5).
     let conveyor = SLIDER.replace("velocity = [0.05, 0.0]\n", "").replace(
@@ -204,10 +204,23 @@ fn a_sliding_floor_parses_drags_the_block_along_and_the_total_closes() {
             .map(|x| x.parse().unwrap())
             .collect();
         let (rows, _, total) = energy_rows(&dir, "wall_floor_friction");
-        (last[1] / 0.125, rows, total)
+        let walls = fs::read_to_string(dir.join("walls.csv")).unwrap();
+        (last[1] / 0.125, rows, total, walls)
     };
-    let (braked, _, _) = final_velocity(SLIDER, "slider.toml");
-    let (dragged, rows, total) = final_velocity(&conveyor, "conveyor.toml");
+    let (braked, _, _, _) = final_velocity(SLIDER, "slider.toml");
+    let (dragged, rows, total, walls) = final_velocity(&conveyor, "conveyor.toml");
+    // walls.csv tracks the moving floor after the force columns: d = v t (no ramp here).
+    assert!(
+        walls.lines().next().unwrap().ends_with(
+            ",wall_floor_friction_force_z,wall_floor_displacement_x,\
+             wall_floor_displacement_y,wall_floor_displacement_z"
+        ),
+        "{walls}"
+    );
+    for line in walls.lines().skip(1) {
+        let r: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert_eq!(r[7..], [-0.05 * r[0], 0.0, 0.0], "{line}");
+    }
     assert!(braked > 0.005, "still sliding: {braked}");
     assert!(
         ((dragged + 0.05) - braked).abs() < 1e-3 * 0.05,
