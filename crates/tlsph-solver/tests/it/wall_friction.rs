@@ -154,34 +154,51 @@ fn friction_energy(sim: &Simulation<2>) -> f64 {
         .1
 }
 
+/// End time of the incline tests.
+const INCLINE_END: f64 = 12.0;
+
+/// |g| = 0.01 tilted by θ = atan(0.5): the incline of the tests below.
+fn incline_gravity() -> Vector<2> {
+    let theta = 0.5f64.atan();
+    Vector::<2>::new(0.01 * theta.sin(), -0.01 * theta.cos())
+}
+
+/// The block of `block_on_floor` on the incline, launched at `v0` along it, with kinetic
+/// friction `mu` and static `static_friction`, loaded by its weight over 8 wave transits of
+/// its height: no bounce, so the block stays in contact (a sudden load swings the normal force
+/// between 0 and 2Mg, and the block hops down the slope). Its centre's displacement along the
+/// slope at the end, the slope of its velocity after a quarter of the run, and the run.
+fn on_incline(mu: f64, static_friction: Option<f64>, v0: f64) -> (f64, f64, Simulation<2>) {
+    let mut m = block_on_floor(
+        incline_gravity(),
+        Vector::<2>::new(v0, 0.0),
+        mu,
+        INCLINE_END,
+    );
+    m.effects.walls[0].static_friction = static_friction;
+    m.effects.body_force.as_mut().unwrap().ramp = Some(VelocityRamp {
+        duration: 2.0,
+        shape: RampShape::Smooth,
+    });
+    let mut sim = Simulation::new(m).unwrap();
+    let mut samples = Vec::new();
+    sim.run(|s, r| {
+        if r.time > 0.25 * INCLINE_END {
+            samples.push((r.time, com_velocity(s).x));
+        }
+    })
+    .unwrap();
+    (com_displacement(&sim).x, slope(&samples), sim)
+}
+
 #[test]
 fn on_an_incline_a_block_sticks_below_the_friction_angle_and_slides_above_it() {
     // Tilting gravity by θ = atan(0.5) is an incline. With μ = 0.6 > tan θ the block holds
     // (only the elastic shear of its height moves its centre); with μ = 0.3 it slides at
     // a = |g|(sin θ − μ cos θ).
-    let magnitude = 0.01;
-    let theta = 0.5f64.atan();
-    let g = Vector::<2>::new(magnitude * theta.sin(), -magnitude * theta.cos());
-    let end = 12.0;
-    let run = |mu: f64| {
-        let mut m = block_on_floor(g, Vector::<2>::zeros(), mu, end);
-        // Loaded by its weight over 8 wave transits of its height: no bounce, so the block
-        // stays in contact (a sudden load swings the normal force between 0 and 2Mg, and the
-        // block hops down the slope).
-        m.effects.body_force.as_mut().unwrap().ramp = Some(VelocityRamp {
-            duration: 2.0,
-            shape: RampShape::Smooth,
-        });
-        let mut sim = Simulation::new(m).unwrap();
-        let mut samples = Vec::new();
-        sim.run(|s, r| {
-            if r.time > 0.25 * end {
-                samples.push((r.time, com_velocity(s).x));
-            }
-        })
-        .unwrap();
-        (com_displacement(&sim).x, slope(&samples), sim)
-    };
+    let (g, theta) = (incline_gravity(), 0.5f64.atan());
+    let (magnitude, end) = (0.01, INCLINE_END);
+    let run = |mu: f64| on_incline(mu, None, 0.0);
     let free_slide = 0.5 * g.x * end * end;
     let (held, creep_rate, _) = run(0.6);
     // Static shear estimate: top drift ρ g_x H²/(2G) = 3.7e-4 with G = 0.375; the centre moves
@@ -248,35 +265,17 @@ fn with_a_static_coefficient_a_block_at_rest_holds_where_a_sliding_one_keeps_sli
     // vibration the load ramp leaves: with μ_s = 0.6, 0.7 and 0.8 the block at rest slipped
     // somewhere, and once slipping at μ_k it slid on (0.32, 0.30 and 0.29 of the frictionless
     // slide, measured).
-    let magnitude = 0.01;
-    let theta = 0.5f64.atan();
-    let g = Vector::<2>::new(magnitude * theta.sin(), -magnitude * theta.cos());
-    let end = 12.0;
-    let run = |v0: f64| {
-        let mut m = block_on_floor(g, Vector::<2>::new(v0, 0.0), 0.3, end);
-        m.effects.walls[0].static_friction = Some(1.0);
-        m.effects.body_force.as_mut().unwrap().ramp = Some(VelocityRamp {
-            duration: 2.0,
-            shape: RampShape::Smooth,
-        });
-        let mut sim = Simulation::new(m).unwrap();
-        let mut samples = Vec::new();
-        sim.run(|s, r| {
-            if r.time > 0.25 * end {
-                samples.push((r.time, com_velocity(s).x));
-            }
-        })
-        .unwrap();
-        (com_displacement(&sim).x, slope(&samples))
-    };
+    let (g, theta) = (incline_gravity(), 0.5f64.atan());
+    let (magnitude, end) = (0.01, INCLINE_END);
+    let run = |v0: f64| on_incline(0.3, Some(1.0), v0);
     let free_slide = 0.5 * g.x * end * end;
-    let (held, _) = run(0.0);
+    let (held, _, _) = run(0.0);
     eprintln!("held {:.2e} of the free slide", held / free_slide);
     assert!(
         held.abs() < 5e-3 * free_slide,
         "held block moved {held:e} of {free_slide:e}"
     );
-    let (slid, acceleration) = run(0.1 * magnitude * end);
+    let (slid, acceleration, _) = run(0.1 * magnitude * end);
     let expected = magnitude * (theta.sin() - 0.3 * theta.cos());
     eprintln!("launched: a / Coulomb {:.4}", acceleration / expected);
     assert!(
