@@ -442,9 +442,14 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                     let Some(law) = this.law(k, q) else {
                         return;
                     };
+                    let (k_surface, q_surface) =
+                        (this.defines_normal(k, q), this.defines_normal(q, k));
+                    if !(k_surface || q_surface) {
+                        return;
+                    }
                     let stick_rate = this.stick_rate(p, k, q, ctx.kick);
                     // k as the surface particle of the pair (k, q): it feels −f_q.
-                    if this.defines_normal(k, q) {
+                    if k_surface {
                         if let Some(on_q) = law.force_on_partner(
                             &(x_q - x[k]),
                             &normal[k],
@@ -455,7 +460,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                         }
                     }
                     // k as the partner of surface particle q.
-                    if this.defines_normal(q, k) {
+                    if q_surface {
                         if let Some(on_k) =
                             law.force_on_partner(&(x[k] - x_q), &n_q, &(v_k - v_q), stick_rate)
                         {

@@ -3,11 +3,11 @@
 //! at rest brakes the same block sliding (Galilean invariance); motions that cannot be
 //! followed are refused.
 
+use super::wall_friction::block_on_floor;
 use super::{lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    BodyForceDescription, Model, RampShape, SetupError, Simulation, VelocityRamp, WallDescription,
-    WallMotion,
+    Model, RampShape, SetupError, Simulation, VelocityRamp, WallDescription, WallMotion,
 };
 
 /// A 1D bar of 200 particles on [0, 1] (ρ = 1, M = 1, c = 1) at rest, and a wall at x = 0
@@ -94,37 +94,18 @@ fn a_piston_loads_a_bar_with_the_impact_stress_and_the_energy_closes() {
 }
 
 /// The block of `wall_friction::block_on_floor` (10 × 5 particles, dx 0.05, c = 1) at
-/// velocity `v0` under g = (0, −0.01), on a floor with μ = 0.5 that slides at `floor` (its
-/// plane y = 0 moving within itself).
+/// velocity `v0` under g = (0, −0.01) ramped in over 2 (smooth), on a floor with μ = 0.5
+/// that slides at `floor` (its plane y = 0 moving within itself).
 fn block_on_sliding_floor(v0: f64, floor: f64) -> Model<2> {
-    let dx = 0.05;
-    let mut m = model(
-        lattice([10, 5], dx),
-        dx,
-        |_| Vector::<2>::new(v0, 0.0),
-        Setup {
-            end_time: 12.0,
-            ..Setup::default()
-        },
-    );
-    m.effects.body_force = Some(BodyForceDescription {
-        acceleration: Vector::<2>::new(0.0, -0.01),
-        bodies: None,
-        ramp: Some(VelocityRamp {
-            duration: 2.0,
-            shape: RampShape::Smooth,
-        }),
+    let g = Vector::<2>::new(0.0, -0.01);
+    let mut m = block_on_floor(g, Vector::<2>::new(v0, 0.0), 0.5, 12.0);
+    m.effects.body_force.as_mut().unwrap().ramp = Some(VelocityRamp {
+        duration: 2.0,
+        shape: RampShape::Smooth,
     });
-    m.effects.walls.push(WallDescription {
-        name: "floor".into(),
-        point: Vector::<2>::zeros(),
-        normal: Vector::<2>::new(0.0, 1.0),
-        friction: 0.5,
-        static_friction: None,
-        motion: Some(WallMotion {
-            velocity: Vector::<2>::new(floor, 0.0),
-            ramp: None,
-        }),
+    m.effects.walls[0].motion = Some(WallMotion {
+        velocity: Vector::<2>::new(floor, 0.0),
+        ramp: None,
     });
     m
 }

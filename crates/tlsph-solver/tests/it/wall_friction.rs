@@ -11,7 +11,7 @@ use tlsph_solver::{
 /// Block of 10 × 5 particles at dx = 0.05 (0.5 × 0.25; ρ = 1, M = 1, c = 1) resting on the
 /// floor y = 0 (its bottom layer exactly touching), gravity `g`, initial velocity `v0`, and a
 /// floor with friction `mu`.
-fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64) -> Model<2> {
+pub(super) fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64) -> Model<2> {
     let dx = 0.05;
     let mut m = model(
         lattice([10, 5], dx),
@@ -222,36 +222,33 @@ fn on_an_incline_a_block_sticks_below_the_friction_angle_and_slides_above_it() {
     assert!(slid > 0.0 && friction_energy(&sim) > 0.0);
 }
 
+/// Asserts that `model` is refused at setup with a wall error naming the floor and `word`.
+fn assert_wall_error(model: Model<2>, word: &str, case: &str) {
+    match Simulation::new(model) {
+        Err(SetupError::InvalidConfig { field, message }) => {
+            assert_eq!(field, "wall");
+            assert!(
+                message.contains("`floor`") && message.contains(word),
+                "{message}"
+            );
+        }
+        other => panic!("{case}: expected a wall error, got {other:?}"),
+    }
+}
+
 #[test]
 fn wall_friction_errors_name_the_wall() {
+    let floor =
+        |mu: f64| block_on_floor(Vector::<2>::new(0.0, -0.01), Vector::<2>::zeros(), mu, 1.0);
     for mu in [-0.1, f64::NAN, f64::INFINITY] {
-        let m = block_on_floor(Vector::<2>::new(0.0, -0.01), Vector::<2>::zeros(), mu, 1.0);
-        match Simulation::new(m) {
-            Err(SetupError::InvalidConfig { field, message }) => {
-                assert_eq!(field, "wall");
-                assert!(
-                    message.contains("`floor`") && message.contains("friction"),
-                    "{message}"
-                );
-            }
-            other => panic!("μ = {mu}: expected a wall error, got {other:?}"),
-        }
+        assert_wall_error(floor(mu), "friction", &format!("μ = {mu}"));
     }
     // A static coefficient below the kinetic one would let a held particle go more easily
     // than a sliding one is braked.
     for static_friction in [0.1, f64::NAN] {
-        let mut m = block_on_floor(Vector::<2>::new(0.0, -0.01), Vector::<2>::zeros(), 0.5, 1.0);
+        let mut m = floor(0.5);
         m.effects.walls[0].static_friction = Some(static_friction);
-        match Simulation::new(m) {
-            Err(SetupError::InvalidConfig { field, message }) => {
-                assert_eq!(field, "wall");
-                assert!(
-                    message.contains("`floor`") && message.contains("static"),
-                    "{message}"
-                );
-            }
-            other => panic!("μ_s = {static_friction}: expected a wall error, got {other:?}"),
-        }
+        assert_wall_error(m, "static", &format!("μ_s = {static_friction}"));
     }
 }
 
