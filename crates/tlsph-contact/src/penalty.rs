@@ -29,6 +29,7 @@
 //!    Fuller's law has no stick state; its regularised direction v_t / max(|v_t|, 1e-6 c*)
 //!    chatters about zero sliding speed.
 
+use crate::wall::FrictionCoefficients;
 use tlsph_kernels::{AnyKernel, Kernel};
 use tlsph_math::Vector;
 
@@ -228,7 +229,8 @@ impl PenaltyLaw {
             let speed = v_t.norm();
             if speed > 0.0 {
                 // Kinetic Coulomb force, or the smaller force that stops the sliding (stick).
-                let coefficient = self.friction.min(stick_rate * speed);
+                let coefficient =
+                    FrictionCoefficients::single(self.friction).coefficient(stick_rate * speed);
                 force -= v_t * (coefficient * f_n.abs() / speed);
             }
         }

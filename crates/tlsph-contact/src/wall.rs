@@ -83,6 +83,19 @@ impl FrictionCoefficients {
             static_coefficient: mu,
         }
     }
+
+    /// Friction force per unit of normal force, given the stick `demand`: the force that
+    /// would stop the sliding within the step, per unit of normal force. The demand itself
+    /// while it is at most μ_s (the contact sticks), else μ_k (it slides). With one
+    /// coefficient this is min(μ, demand). Shared by the wall and penalty-contact laws.
+    #[inline]
+    pub fn coefficient(&self, demand: f64) -> f64 {
+        if demand <= self.static_coefficient {
+            demand
+        } else {
+            self.kinetic
+        }
+    }
 }
 
 /// Coulomb friction of a rigid surface on one touching particle (numerics.md §13 `[C]`).
@@ -112,11 +125,6 @@ pub fn wall_friction_acceleration<const D: usize>(
     if !(normal_acceleration > 0.0 && speed > 0.0) {
         return Vector::zeros();
     }
-    let stopping = speed / kick;
-    let magnitude = if stopping <= friction.static_coefficient * normal_acceleration {
-        stopping
-    } else {
-        friction.kinetic * normal_acceleration
-    };
-    v_t * (-magnitude / speed)
+    let demand = speed / (kick * normal_acceleration);
+    v_t * (-normal_acceleration * friction.coefficient(demand) / speed)
 }
