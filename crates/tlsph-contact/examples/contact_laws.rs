@@ -4,7 +4,8 @@
 //! Run with `cargo run -p tlsph-contact --example contact_laws`.
 
 use tlsph_contact::{
-    ContactCandidates, KernelKind, PenaltyLaw, PotentialLaw, Vector, DT_FACTOR, SKIN_FRACTION,
+    ContactCandidates, FrictionCoefficients, KernelKind, PenaltyLaw, PotentialLaw, Vector,
+    DT_FACTOR, SKIN_FRACTION,
 };
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -15,7 +16,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let kernel = KernelKind::CubicSpline.build(2, h)?;
     let potential = PotentialLaw::new(kernel, dx, modulus * dx, 4.0, 0.0);
     // Penalty law (numerics.md §12.1): k_c = E d0, R = d0, μ = 0.2.
-    let penalty = PenaltyLaw::new::<2>(1.0, 1.0, 0.2, youngs, dx);
+    let penalty = PenaltyLaw::new::<2>(1.0, 1.0, FrictionCoefficients::single(0.2), youngs, dx);
     let normal = Vector::<2>::new(0.0, 1.0);
     println!(
         "{:>6} {:>14} {:>14} {:>14}",

@@ -12,8 +12,9 @@
 //!   (numerics.md §12.1, F §4.3–4.4), with the surface test [`is_surface`] and the outward
 //!   normal [`OutwardNormal`] it needs.
 //! * [`RigidPlane`]: a fixed rigid plane (an anvil) pushing back particles by a penalty
-//!   spring, and its Coulomb friction [`wall_friction_acceleration`] with static and kinetic
-//!   [`FrictionCoefficients`] (numerics.md §13).
+//!   spring, and its Coulomb friction [`wall_friction_acceleration`]. Both friction laws take
+//!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the
+//!   sliding coefficient with speed (numerics.md §13).
 //!
 //! Every law is a function of one pair (or one particle and the plane), evaluated identically
 //! from both ends, so a solver that gathers per particle gets equal and opposite forces bit

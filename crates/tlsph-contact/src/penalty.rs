@@ -21,11 +21,13 @@
 //!    other pumped energy into the contact (a slider falling at v onto a plate while sliding at
 //!    5v rebounded at 1.36v). The weight and its small tangential force −Φ w' t̂ make each pair
 //!    conservative for a fixed normal.
-//! 5. **Friction** (F 4.3, with a stick state `[C]`): f_K += −|f_n| min(μ, λ |v_t|) v_t/|v_t|,
+//! 5. **Friction** (F 4.3, with a stick state `[C]`): f_K += −|f_n| μ(λ |v_t|) v_t/|v_t|,
 //!    v_t the part of v_K − v_I tangential to n̂_I after the step's other forces and λ the
 //!    caller's stick rate \[s/m\]: per unit of normal force, the friction force per unit of
-//!    sliding speed that would stop the sliding within the step. Coulomb's kinetic force while
-//!    the pair slides; when a smaller force stops it, exactly that force, and the pair sticks.
+//!    sliding speed that would stop the sliding within the step. μ(demand) is
+//!    [`FrictionCoefficients::coefficient`]: the demand itself while it is at most the static
+//!    μ_s (the pair sticks under exactly the force that stops it), else the kinetic μ_k (it
+//!    slides under Coulomb's kinetic force). With μ_s = μ_k, min(μ, λ |v_t|).
 //!    Fuller's law has no stick state; its regularised direction v_t / max(|v_t|, 1e-6 c*)
 //!    chatters about zero sliding speed.
 
@@ -103,18 +105,19 @@ pub struct PenaltyLaw {
     range: f64,
     /// d0 = ½(Δx_A + Δx_B): tangential half-width and penetration depth of the zone \[m\].
     reach: f64,
-    /// Friction coefficient μ (0: frictionless).
-    friction: f64,
+    /// Kinetic and static friction coefficients (both 0: frictionless).
+    friction: FrictionCoefficients,
 }
 
 impl PenaltyLaw {
     /// The law of numerics.md §12.1 item 5 in dimension `D`: k_c = `stiffness_factor` ·
     /// `youngs` · d0^{D−1} (E* the smaller Young's modulus of the pair), R = `range_factor` ·
-    /// d0, friction coefficient `friction`, d0 = `reach` = ½(Δx_A + Δx_B).
+    /// d0, friction coefficients `friction` (`FrictionCoefficients::single(μ)` for one μ),
+    /// d0 = `reach` = ½(Δx_A + Δx_B).
     pub fn new<const D: usize>(
         stiffness_factor: f64,
         range_factor: f64,
-        friction: f64,
+        friction: FrictionCoefficients,
         youngs: f64,
         reach: f64,
     ) -> Self {
@@ -196,9 +199,9 @@ impl PenaltyLaw {
         Some((self.weight(t_len).0 * self.normal_force(r_n).0).abs())
     }
 
-    /// Whether the law has friction (μ > 0).
+    /// Whether the law has friction (μ_s > 0: a pair can stick, even when μ_k = 0).
     pub fn has_friction(&self) -> bool {
-        self.friction > 0.0
+        self.friction.static_coefficient > 0.0
     }
 
     /// Force on K at offset `d` = x_K − x_I from surface particle I with unit normal `normal`:
@@ -224,13 +227,13 @@ impl PenaltyLaw {
         if t_len > 0.0 {
             force -= t * (phi * dw / t_len);
         }
-        if self.friction > 0.0 {
+        if self.has_friction() {
             let v_t = relative_velocity - normal * relative_velocity.dot(normal);
             let speed = v_t.norm();
             if speed > 0.0 {
-                // Kinetic Coulomb force, or the smaller force that stops the sliding (stick).
-                let coefficient =
-                    FrictionCoefficients::single(self.friction).coefficient(stick_rate * speed);
+                // Kinetic Coulomb force, or the force that stops the sliding (stick) while it
+                // is within the static limit.
+                let coefficient = self.friction.coefficient(stick_rate * speed, speed);
                 force -= v_t * (coefficient * f_n.abs() / speed);
             }
         }

@@ -65,14 +65,19 @@ impl<const D: usize> RigidPlane<D> {
     }
 }
 
-/// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding and the static
-/// μ_s ≥ μ_k that bounds the force holding a particle at rest (numerics.md §13 `[C]`).
+/// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
+/// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
+/// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrictionCoefficients {
     /// Kinetic coefficient μ_k ≥ 0.
     pub kinetic: f64,
     /// Static coefficient μ_s ≥ μ_k.
     pub static_coefficient: f64,
+    /// Exponential decay coefficient d_c ≥ 0 \[s/m\] of the sliding coefficient,
+    /// μ(v) = μ_k + (μ_s − μ_k) exp(−d_c v) at sliding speed v (the exponential-decay law of
+    /// finite-element codes' friction models); `None`: a sliding contact drops to μ_k at once.
+    pub decay: Option<f64>,
 }
 
 impl FrictionCoefficients {
@@ -81,17 +86,23 @@ impl FrictionCoefficients {
         Self {
             kinetic: mu,
             static_coefficient: mu,
+            decay: None,
         }
     }
 
-    /// Friction force per unit of normal force, given the stick `demand`: the force that
-    /// would stop the sliding within the step, per unit of normal force. The demand itself
-    /// while it is at most μ_s (the contact sticks), else μ_k (it slides). With one
-    /// coefficient this is min(μ, demand). Shared by the wall and penalty-contact laws.
+    /// Friction force per unit of normal force, given the stick `demand` (the force that
+    /// would stop the sliding within the step, per unit of normal force) and the sliding
+    /// `speed`: the demand itself while it is at most μ_s (the contact sticks), else the
+    /// sliding coefficient μ(speed) = μ_k + (μ_s − μ_k) exp(−d_c speed), or μ_k without a
+    /// decay coefficient. With one coefficient this is min(μ, demand). The sliding force never
+    /// exceeds the stopping one, so friction never reverses the sliding. Shared by the wall
+    /// and penalty-contact laws.
     #[inline]
-    pub fn coefficient(&self, demand: f64) -> f64 {
+    pub fn coefficient(&self, demand: f64, speed: f64) -> f64 {
         if demand <= self.static_coefficient {
             demand
+        } else if let Some(decay) = self.decay {
+            self.kinetic + (self.static_coefficient - self.kinetic) * (-decay * speed).exp()
         } else {
             self.kinetic
         }
@@ -126,5 +137,5 @@ pub fn wall_friction_acceleration<const D: usize>(
         return Vector::zeros();
     }
     let demand = speed / (kick * normal_acceleration);
-    v_t * (-normal_acceleration * friction.coefficient(demand) / speed)
+    v_t * (-normal_acceleration * friction.coefficient(demand, speed) / speed)
 }

@@ -247,6 +247,61 @@ impl Context<'_> {
         }
     }
 
+    /// The `friction` (kinetic μ ≥ 0, default 0), `static_friction` (μ_s ≥ μ, default none:
+    /// the same) and `friction_decay` (d_c ≥ 0, only with μ_s > μ) keys of the table at
+    /// `prefix` (a wall or the contact).
+    fn friction_keys(
+        &self,
+        friction: &Option<Spanned<f64>>,
+        static_friction: &Option<Spanned<f64>>,
+        friction_decay: &Option<Spanned<f64>>,
+        prefix: &str,
+    ) -> Result<FrictionKeys, SceneError> {
+        let kinetic = match friction {
+            Some(mu) => self.non_negative(mu, &format!("{prefix}.friction"))?,
+            None => 0.0,
+        };
+        let static_coefficient = match static_friction {
+            Some(mu) => {
+                let field = format!("{prefix}.static_friction");
+                let value = self.non_negative(mu, &field)?;
+                if value < kinetic {
+                    return Err(self.error(
+                        &mu.span(),
+                        &field,
+                        format!(
+                            "must be ≥ the (kinetic) `friction` {kinetic}: a surface held at rest resists at least as much as one sliding"
+                        ),
+                    ));
+                }
+                Some(value)
+            }
+            None => None,
+        };
+        let decay = match friction_decay {
+            Some(d) => {
+                let field = format!("{prefix}.friction_decay");
+                let value = self.non_negative(d, &field)?;
+                if static_coefficient.is_none_or(|mu_s| mu_s == kinetic) {
+                    return Err(self.error(
+                        &d.span(),
+                        &field,
+                        format!(
+                            "needs a `static_friction` above `friction` {kinetic}: the decay takes the sliding coefficient from the static to the kinetic one"
+                        ),
+                    ));
+                }
+                Some(value)
+            }
+            None => None,
+        };
+        Ok(FrictionKeys {
+            friction: kinetic,
+            static_friction: static_coefficient,
+            friction_decay: decay,
+        })
+    }
+
     pub(crate) fn positive(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
         let v = *value.get_ref();
         if v.is_finite() && v > 0.0 {
@@ -612,27 +667,16 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 ));
             }
         }
-        let friction = match &w.friction {
-            Some(mu) => ctx.non_negative(mu, &format!("wall[{name}].friction"))?,
-            None => 0.0,
-        };
-        let static_friction = match &w.static_friction {
-            Some(mu) => {
-                let field = format!("wall[{name}].static_friction");
-                let value = ctx.non_negative(mu, &field)?;
-                if value < friction {
-                    return Err(ctx.error(
-                        &mu.span(),
-                        &field,
-                        format!(
-                            "must be ≥ the (kinetic) `friction` {friction}: a particle held at rest resists at least as much as one sliding"
-                        ),
-                    ));
-                }
-                Some(value)
-            }
-            None => None,
-        };
+        let FrictionKeys {
+            friction,
+            static_friction,
+            friction_decay,
+        } = ctx.friction_keys(
+            &w.friction,
+            &w.static_friction,
+            &w.friction_decay,
+            &format!("wall[{name}]"),
+        )?;
         let ramp = parse_ramp(ctx, &w.ramp_time, &w.ramp_shape, &|key: &str| {
             format!("wall[{name}].{key}")
         })?;
@@ -681,6 +725,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             normal,
             friction,
             static_friction,
+            friction_decay,
             motion,
         });
     }
@@ -1023,7 +1068,8 @@ enum Contact {
 
 /// `[contact]`: `law = "potential"` (default; numerics.md §12.2: scale a > 0, exponent n ≥ 1,
 /// default 4) or `law = "penalty"` (§12.1: stiffness factor > 0 and range > 0, default 1,
-/// friction μ ≥ 0, default 0); the keys of the other law are errors. Optional body pairs by
+/// friction μ ≥ 0, default 0, static friction μ_s ≥ μ, default μ, and its decay d_c ≥ 0); the
+/// keys of the other law are errors. Optional body pairs by
 /// name (default: every pair of different bodies; a body paired with itself is self-contact,
 /// potential law only). With the updated-Lagrangian formulation bodies of the same kernel
 /// group, and every body with itself, already interact through the kernel, so naming such a
@@ -1058,6 +1104,8 @@ fn build_contact<const D: usize>(
         (&c.stiffness, "stiffness"),
         (&c.range, "range"),
         (&c.friction, "friction"),
+        (&c.static_friction, "static_friction"),
+        (&c.friction_decay, "friction_decay"),
     ];
     let foreign: &[(&Option<Spanned<f64>>, &str)] = if penalty {
         &potential_keys
@@ -1086,10 +1134,12 @@ fn build_contact<const D: usize>(
         LawKeys::Penalty {
             stiffness: factor(&c.stiffness, "stiffness")?,
             range: factor(&c.range, "range")?,
-            friction: match &c.friction {
-                None => 0.0,
-                Some(v) => ctx.non_negative(v, "contact.friction")?,
-            },
+            friction: ctx.friction_keys(
+                &c.friction,
+                &c.static_friction,
+                &c.friction_decay,
+                "contact",
+            )?,
         }
     } else {
         let Some(scale) = &c.scale else {
@@ -1178,7 +1228,9 @@ fn build_contact<const D: usize>(
         } => Contact::Penalty(PenaltyContactDescription {
             stiffness,
             range,
-            friction,
+            friction: friction.friction,
+            static_friction: friction.static_friction,
+            friction_decay: friction.friction_decay,
             pairs,
         }),
     })
@@ -1193,8 +1245,15 @@ enum LawKeys {
     Penalty {
         stiffness: f64,
         range: f64,
-        friction: f64,
+        friction: FrictionKeys,
     },
+}
+
+/// The checked friction keys of a `[[wall]]` or the penalty `[contact]`.
+struct FrictionKeys {
+    friction: f64,
+    static_friction: Option<f64>,
+    friction_decay: Option<f64>,
 }
 
 fn build_body<const D: usize>(

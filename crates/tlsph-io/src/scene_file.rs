@@ -65,6 +65,8 @@ pub(crate) struct ContactTable {
     pub stiffness: Option<Spanned<f64>>,
     pub range: Option<Spanned<f64>>,
     pub friction: Option<Spanned<f64>>,
+    pub static_friction: Option<Spanned<f64>>,
+    pub friction_decay: Option<Spanned<f64>>,
     pub pairs: Option<Spanned<Vec<Vec<String>>>>,
 }
 
@@ -129,6 +131,7 @@ pub(crate) struct WallTable {
     pub normal: Spanned<Vec<f64>>,
     pub friction: Option<Spanned<f64>>,
     pub static_friction: Option<Spanned<f64>>,
+    pub friction_decay: Option<Spanned<f64>>,
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,

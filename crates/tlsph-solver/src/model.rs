@@ -449,6 +449,9 @@ pub struct WallDescription<const D: usize> {
     /// Static coefficient μ_s ≥ `friction` that bounds the force holding a particle at rest
     /// (numerics.md §13 `[C]`); `None`: the same as `friction`.
     pub static_friction: Option<f64>,
+    /// Decay coefficient d_c ≥ 0 \[s/m\] of the sliding coefficient
+    /// μ(v) = μ_k + (μ_s − μ_k) exp(−d_c v) (numerics.md §13 `[C]`); `None`: μ_k at once.
+    pub friction_decay: Option<f64>,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
 }
@@ -601,15 +604,24 @@ pub struct ContactDescription {
 /// particle type; for a surface particle I (at most 75 % of the fully surrounded neighbour
 /// count) with outward normal n̂_I and a particle K of another body in I's zone
 /// (r⊥ = (x_K − x_I)·n̂_I in [−d0, R), tangential offset ≤ d0, d0 = ½(Δx_A + Δx_B)):
-/// f_K = k_c (R/max(r⊥, 0.05R) − 1) n̂_I − μ |f_n| v̂_t, f_I = −f_K, k_c = s E* d0^{d−1}.
+/// f_K = k_c (R/max(r⊥, 0.05R) − 1) n̂_I − μ |f_n| v̂_t, f_I = −f_K, k_c = s E* d0^{d−1}, μ the
+/// kinetic coefficient while the pair slides (a sticking pair takes the force that stops it,
+/// up to the static coefficient).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PenaltyContactDescription {
     /// Stiffness factor s of k_c = s E* d0^{d−1} (E* the smaller Young's modulus; Fuller: 1).
     pub stiffness: f64,
     /// Range R of the force as a multiple of d0 (Fuller: 1).
     pub range: f64,
-    /// Coulomb friction coefficient μ (0: frictionless).
+    /// Coulomb friction coefficient μ ≥ 0, kinetic when `static_friction` is given (0 and no
+    /// static coefficient: frictionless).
     pub friction: f64,
+    /// Static coefficient μ_s ≥ `friction` that bounds the force holding a pair at rest
+    /// (numerics.md §12.1 `[C]`); `None`: the same as `friction`.
+    pub static_friction: Option<f64>,
+    /// Decay coefficient d_c ≥ 0 \[s/m\] of the sliding coefficient
+    /// μ(v) = μ_k + (μ_s − μ_k) exp(−d_c v) (numerics.md §13 `[C]`); `None`: μ_k at once.
+    pub friction_decay: Option<f64>,
     /// Body pairs (indices into `Model::bodies`) in contact; `None` = every pair of different
     /// bodies (in the updated-Lagrangian formulation minus those of one kernel group).
     pub pairs: Option<Vec<(usize, usize)>>,

@@ -1925,25 +1925,13 @@ fn build_effects<const D: usize>(
         let h = per_particle(&|b| b.smoothing_length);
         let c0 = per_particle(&|b| b.sound_speed0);
         let dx = per_particle(&|b| b.spacing);
-        if !(wall.friction.is_finite() && wall.friction >= 0.0) {
-            return Err(SetupError::InvalidConfig {
-                field: "wall",
-                message: format!(
-                    "wall `{}`: the friction coefficient must be finite and ≥ 0, got {}",
-                    wall.name, wall.friction
-                ),
-            });
-        }
-        let static_friction = wall.static_friction.unwrap_or(wall.friction);
-        if !(static_friction.is_finite() && static_friction >= wall.friction) {
-            return Err(SetupError::InvalidConfig {
-                field: "wall",
-                message: format!(
-                    "wall `{}`: the static friction coefficient must be finite and ≥ the kinetic {}, got {static_friction}",
-                    wall.name, wall.friction
-                ),
-            });
-        }
+        let coefficients =
+            checked_friction(wall.friction, wall.static_friction, wall.friction_decay).map_err(
+                |message| SetupError::InvalidConfig {
+                    field: "wall",
+                    message: format!("wall `{}`: {message}", wall.name),
+                },
+            )?;
         if let Some(motion) = &wall.motion {
             if !motion.velocity.iter().all(|v| v.is_finite()) {
                 return Err(SetupError::InvalidConfig {
@@ -1962,11 +1950,8 @@ fn build_effects<const D: usize>(
         let plane = (wall.point, wall.normal);
         let rigid = RigidWall::new(&wall.name, plane, wall.motion, &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
-        let coefficients = FrictionCoefficients {
-            kinetic: wall.friction,
-            static_coefficient: static_friction,
-        };
-        let friction = (static_friction > 0.0).then(|| rigid.friction(coefficients));
+        let friction =
+            (coefficients.static_coefficient > 0.0).then(|| rigid.friction(coefficients));
         effects.push(BookedEffect::new(Box::new(rigid)));
         if let Some(friction) = friction {
             effects.push(BookedEffect::new(Box::new(friction)));
@@ -2241,9 +2226,41 @@ fn contact_pairs<const D: usize>(
     }
 }
 
+/// The Coulomb coefficients of a wall or a penalty contact: kinetic μ_k = `kinetic` (finite,
+/// ≥ 0), static μ_s = `static_coefficient` (finite, ≥ μ_k; `None`: μ_k) and the decay
+/// coefficient d_c = `decay` of the sliding coefficient (finite, ≥ 0; `None`: none),
+/// numerics.md §13 `[C]`. The error says which is wrong.
+fn checked_friction(
+    kinetic: f64,
+    static_coefficient: Option<f64>,
+    decay: Option<f64>,
+) -> Result<FrictionCoefficients, String> {
+    if !(kinetic.is_finite() && kinetic >= 0.0) {
+        return Err(format!(
+            "the friction coefficient must be finite and ≥ 0, got {kinetic}"
+        ));
+    }
+    let static_coefficient = static_coefficient.unwrap_or(kinetic);
+    if !(static_coefficient.is_finite() && static_coefficient >= kinetic) {
+        return Err(format!(
+            "the static friction coefficient must be finite and ≥ the kinetic {kinetic}, got {static_coefficient}"
+        ));
+    }
+    if let Some(decay) = decay.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(format!(
+            "the friction decay coefficient must be finite and ≥ 0, got {decay}"
+        ));
+    }
+    Ok(FrictionCoefficients {
+        kinetic,
+        static_coefficient,
+        decay,
+    })
+}
+
 /// Fuller's particle-type penalty contact (numerics.md §12.1) for the declared body pairs (or
 /// every pair of different bodies): k_c = s E* d0^{d−1} with E* the smaller Young's modulus,
-/// R = range · d0, friction μ regularised at 1e-6 of the smaller sound speed. A body cannot be
+/// R = range · d0, kinetic and static friction coefficients. A body cannot be
 /// paired with itself (a particle type never contacts itself; use the potential law's
 /// self-contact). A body whose every particle has every velocity component prescribed is
 /// driven: its surface is the master surface of its pairs.
@@ -2256,19 +2273,22 @@ fn build_penalty_contact<const D: usize>(
 ) -> Result<PenaltyContact<D>, SetupError> {
     let fail =
         |field: &'static str, message: String| Err(SetupError::InvalidConfig { field, message });
-    for (field, value, low, inclusive) in [
-        ("penalty_contact.stiffness", contact.stiffness, 0.0, false),
-        ("penalty_contact.range", contact.range, 0.0, false),
-        ("penalty_contact.friction", contact.friction, 0.0, true),
+    for (field, value) in [
+        ("penalty_contact.stiffness", contact.stiffness),
+        ("penalty_contact.range", contact.range),
     ] {
-        if !(value.is_finite() && (value > low || (inclusive && value == low))) {
-            let bound = if inclusive { "≥" } else { ">" };
-            return fail(
-                field,
-                format!("must be finite and {bound} {low}, got {value}"),
-            );
+        if !(value.is_finite() && value > 0.0) {
+            return fail(field, format!("must be finite and > 0, got {value}"));
         }
     }
+    let friction = match checked_friction(
+        contact.friction,
+        contact.static_friction,
+        contact.friction_decay,
+    ) {
+        Ok(friction) => friction,
+        Err(message) => return fail("penalty_contact.friction", message),
+    };
     let nb = bodies.len();
     let pairs = contact_pairs(
         model,
@@ -2291,7 +2311,7 @@ fn build_penalty_contact<const D: usize>(
         let law = PenaltyLaw::new::<D>(
             contact.stiffness,
             contact.range,
-            contact.friction,
+            friction,
             youngs(&bodies[a]).min(youngs(&bodies[b])),
             0.5 * (bodies[a].spacing + bodies[b].spacing),
         );
@@ -2581,6 +2601,8 @@ mod penalty_contact_tests {
             stiffness: 1.0,
             range: 1.0,
             friction: 0.0,
+            static_friction: None,
+            friction_decay: None,
             pairs: None,
         };
         let mut contact = build_penalty_contact(

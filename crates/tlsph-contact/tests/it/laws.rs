@@ -3,7 +3,8 @@
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    is_surface, AnyKernel, Kernel, KernelKind, OutwardNormal, PenaltyLaw, PotentialLaw, Vector,
+    is_surface, AnyKernel, FrictionCoefficients, Kernel, KernelKind, OutwardNormal, PenaltyLaw,
+    PotentialLaw, Vector,
 };
 
 fn cubic(dimension: usize, h: f64) -> AnyKernel {
@@ -64,6 +65,11 @@ fn self_contact_excludes_the_reference_support() {
 
 /// k_c = E d0^{d−1} with E = 1, d0 = 1, R = d0, μ as given.
 fn penalty_law<const D: usize>(friction: f64) -> PenaltyLaw {
+    penalty_law_with::<D>(FrictionCoefficients::single(friction))
+}
+
+/// The same law with kinetic and static coefficients.
+fn penalty_law_with<const D: usize>(friction: FrictionCoefficients) -> PenaltyLaw {
     PenaltyLaw::new::<D>(1.0, 1.0, friction, 1.0, 1.0)
 }
 
@@ -177,6 +183,51 @@ fn penalty_force_on_the_axis_is_fullers_and_friction_opposes_slip() {
         law.normal_force_on_partner(&Vector::<2>::new(0.0, 1.5), &n),
         None
     );
+}
+
+#[test]
+fn penalty_friction_sticks_up_to_the_static_coefficient_and_slides_at_the_kinetic_one() {
+    // μ_k = 0.2, μ_s = 0.5; on I's axis at r⊥ = 0.5 the normal force is 1, sliding at 0.1
+    // along +x.
+    let friction = FrictionCoefficients {
+        kinetic: 0.2,
+        static_coefficient: 0.5,
+        decay: None,
+    };
+    let law = penalty_law_with::<2>(friction);
+    assert!(law.has_friction());
+    let n = Vector::<2>::new(0.0, 1.0);
+    let on_axis = Vector::<2>::new(0.0, 0.5);
+    let v = Vector::<2>::new(0.1, 0.0);
+    let tangential = |rate: f64| law.force_on_partner(&on_axis, &n, &v, rate).unwrap()[0];
+    // Demand λ|v_t| = 0.3: above μ_k, within μ_s, so the pair sticks under exactly that force
+    // (one coefficient μ = 0.2 would let it slide under 0.2).
+    assert_relative_eq!(tangential(3.0), -0.3, max_relative = 1e-12);
+    assert_relative_eq!(
+        penalty_law::<2>(0.2)
+            .force_on_partner(&on_axis, &n, &v, 3.0)
+            .unwrap()[0],
+        -0.2,
+        max_relative = 1e-12
+    );
+    // At the static limit it still sticks; beyond it the pair slides under μ_k, not μ_s.
+    assert_relative_eq!(tangential(5.0), -0.5, max_relative = 1e-12);
+    assert_relative_eq!(tangential(5.0 + 1e-9), -0.2, max_relative = 1e-12);
+    // A static coefficient alone is friction too: it holds, and lets go without a kinetic
+    // force.
+    let static_only = penalty_law_with::<2>(FrictionCoefficients {
+        kinetic: 0.0,
+        static_coefficient: 0.5,
+        decay: None,
+    });
+    assert!(static_only.has_friction() && !penalty_law::<2>(0.0).has_friction());
+    let f = |rate: f64| {
+        static_only
+            .force_on_partner(&on_axis, &n, &v, rate)
+            .unwrap()[0]
+    };
+    assert_relative_eq!(f(3.0), -0.3, max_relative = 1e-12);
+    assert_eq!(f(10.0), 0.0);
 }
 
 #[test]

@@ -90,6 +90,7 @@ fn a_static_coefficient_holds_more_than_the_kinetic_one_slides_with() {
     let friction = FrictionCoefficients {
         kinetic: 0.3,
         static_coefficient: 0.6,
+        decay: None,
     };
     let at = |speed: f64| {
         wall_friction_acceleration(10.0, Vector::<2>::new(speed, 0.0), n, friction, 1e-3)
@@ -112,4 +113,45 @@ fn a_static_coefficient_holds_more_than_the_kinetic_one_slides_with() {
     assert_relative_eq!(at(6e-3).x, -6.0, max_relative = 1e-12);
     assert_relative_eq!(at(7e-3).x, -3.0, max_relative = 1e-12);
     assert_relative_eq!(at(-7e-3).x, 3.0, max_relative = 1e-12);
+}
+
+#[test]
+fn with_a_decay_the_sliding_coefficient_falls_from_the_static_to_the_kinetic_one() {
+    // μ_k = 0.3, μ_s = 0.6, d_c = 100 s/m: a sliding contact feels
+    // μ(v) = 0.3 + 0.3 exp(−100 v); a sticking one still takes exactly the stopping force.
+    let friction = FrictionCoefficients {
+        kinetic: 0.3,
+        static_coefficient: 0.6,
+        decay: Some(100.0),
+    };
+    assert_eq!(friction.coefficient(0.4, 0.01), 0.4);
+    for speed in [1e-4, 0.01, 0.05] {
+        assert_relative_eq!(
+            friction.coefficient(2.0, speed),
+            0.3 + 0.3 * (-100.0 * speed).exp(),
+            max_relative = 1e-14
+        );
+    }
+    // Slow sliding feels almost μ_s, fast sliding μ_k; without a decay, μ_k at once.
+    assert!(friction.coefficient(2.0, 1e-6) > 0.5999);
+    assert_relative_eq!(friction.coefficient(2.0, 1.0), 0.3, max_relative = 1e-15);
+    let abrupt = FrictionCoefficients {
+        decay: None,
+        ..friction
+    };
+    assert_eq!(abrupt.coefficient(2.0, 1e-6), 0.3);
+    // Through the wall law: a_n = 10, kick 1e-3, sliding at 0.01 needs 10/(1e-3·10) = 1 > μ_s,
+    // so the particle slides against μ(0.01) a_n.
+    let a = wall_friction_acceleration(
+        10.0,
+        Vector::<2>::new(0.01, 0.0),
+        Vector::<2>::new(0.0, 1.0),
+        friction,
+        1e-3,
+    );
+    assert_relative_eq!(
+        a.x,
+        -10.0 * (0.3 + 0.3 * (-1.0f64).exp()),
+        max_relative = 1e-14
+    );
 }

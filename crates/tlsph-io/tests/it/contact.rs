@@ -167,7 +167,26 @@ fn a_penalty_contact_table_becomes_the_penalty_description() {
     assert!(model.effects.contact.is_none());
     let c = model.effects.penalty_contact.as_ref().unwrap();
     assert_eq!((c.stiffness, c.range, c.friction), (1.0, 1.5, 0.3));
+    assert_eq!((c.static_friction, c.friction_decay), (None, None));
     assert_eq!(c.pairs, Some(vec![(0, 1)]));
+    let scene = parse_scene(
+        &penalty_bars(
+            "friction = 0.3
+static_friction = 0.5
+friction_decay = 20.0
+",
+        ),
+        "scene.toml",
+    )
+    .unwrap();
+    let DimensionModel::One(model) = &scene.model else {
+        panic!("1D")
+    };
+    let c = model.effects.penalty_contact.as_ref().unwrap();
+    assert_eq!(
+        (c.static_friction, c.friction_decay),
+        (Some(0.5), Some(20.0))
+    );
     // `law = "potential"` is the default law, spelled out.
     let scene = parse_scene(
         &TWO_BARS.replace("scale = 0.2\n", "law = \"potential\"\nscale = 0.2\n"),
@@ -194,12 +213,33 @@ fn bad_penalty_contact_keys_are_named_with_field_and_line() {
             "stiffness =",
         ),
         (penalty_bars("range = -1\n"), "contact.range", "range ="),
+        (
+            penalty_bars("friction = 0.3\nstatic_friction = 0.2\n"),
+            "contact.static_friction",
+            "static_friction =",
+        ),
+        // A decay without a static coefficient above the kinetic one has nothing to decay.
+        (
+            penalty_bars("friction = 0.3\nfriction_decay = 10.0\n"),
+            "contact.friction_decay",
+            "friction_decay =",
+        ),
+        (
+            penalty_bars("friction = 0.3\nstatic_friction = 0.5\nfriction_decay = -1.0\n"),
+            "contact.friction_decay",
+            "friction_decay =",
+        ),
         // A key of the other law.
         (penalty_bars("scale = 0.2\n"), "contact.scale", "scale ="),
         (
             TWO_BARS.replace("scale = 0.2\n", "scale = 0.2\nfriction = 0.2\n"),
             "contact.friction",
             "friction =",
+        ),
+        (
+            TWO_BARS.replace("scale = 0.2\n", "scale = 0.2\nstatic_friction = 0.2\n"),
+            "contact.static_friction",
+            "static_friction =",
         ),
         (
             TWO_BARS.replace("scale = 0.2\n", "law = \"coulomb\"\n"),

@@ -56,15 +56,17 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
     };
     assert_eq!(model.effects.walls[0].friction, 0.5);
     assert_eq!(model.effects.walls[0].static_friction, None);
+    assert_eq!(model.effects.walls[0].friction_decay, None);
     let with_static = SLIDER.replace(
         "friction = 0.5\n",
-        "friction = 0.5\nstatic_friction = 0.7\n",
+        "friction = 0.5\nstatic_friction = 0.7\nfriction_decay = 3.0\n",
     );
     let scene = parse_scene(&with_static, "slider.toml").unwrap();
     let DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
     assert_eq!(model.effects.walls[0].static_friction, Some(0.7));
+    assert_eq!(model.effects.walls[0].friction_decay, Some(3.0));
     let ramp = model.effects.body_force.as_ref().unwrap().ramp.unwrap();
     assert_eq!((ramp.duration, ramp.shape), (2.0, RampShape::Linear));
     // Without the keys: frictionless, and the full body force from t = 0.
@@ -98,6 +100,18 @@ fn friction_and_ramp_errors_name_the_field_and_line() {
             "friction = 0.5",
             "friction = 0.5\nstatic_friction = -1.0",
             "wall[floor].static_friction",
+            "≥ 0",
+        ),
+        (
+            "friction = 0.5",
+            "friction = 0.5\nstatic_friction = 0.5\nfriction_decay = 1.0",
+            "wall[floor].friction_decay",
+            "needs a `static_friction` above `friction` 0.5",
+        ),
+        (
+            "friction = 0.5",
+            "friction = 0.5\nstatic_friction = 0.6\nfriction_decay = inf",
+            "wall[floor].friction_decay",
             "≥ 0",
         ),
         (

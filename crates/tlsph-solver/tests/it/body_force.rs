@@ -171,6 +171,7 @@ fn a_block_dropped_on_a_wall_gets_the_weight_impulse_back_and_energy_closes() {
         normal: Vector::<2>::new(0.0, 1.0),
         friction: 0.0,
         static_friction: None,
+        friction_decay: None,
         motion: None,
     });
     let mut sim = Simulation::new(m).unwrap();

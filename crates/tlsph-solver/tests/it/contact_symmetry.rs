@@ -230,6 +230,8 @@ fn a_half_model_in_contact_at_its_plane_moves_like_the_full_model() {
                     stiffness: 1.0,
                     range: 1.0,
                     friction: 0.3,
+                    static_friction: None,
+                    friction_decay: None,
                     pairs: None,
                 }),
                 ..Default::default()
@@ -243,6 +245,8 @@ fn a_half_model_in_contact_at_its_plane_moves_like_the_full_model() {
                     stiffness: 1.0,
                     range: 1.0,
                     friction: 0.3,
+                    static_friction: None,
+                    friction_decay: None,
                     pairs: None,
                 }),
                 ..Default::default()

@@ -29,6 +29,7 @@ fn piston_into_bar(speed: f64, ramp: Option<VelocityRamp>, end_time: f64) -> Mod
         normal: Vector::<1>::new(1.0),
         friction: 0.0,
         static_friction: None,
+        friction_decay: None,
         motion: Some(WallMotion {
             velocity: Vector::<1>::new(speed),
             ramp,
