@@ -12,10 +12,11 @@ use tlsph_kernels::KernelKind;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
-    ArtificialStress, BodyDescription, BodyForceDescription, BoundaryDescription, BulkViscosity,
-    ContactDescription, EffectsDescription, Formulation, MaterialDescription, MaterialModel, Model,
-    ParticleField, PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport,
-    SimulationConfig, StressUpdate, SymmetryPlane, VelocityRamp, WallDescription, WallMotion,
+    Amplitude, AmplitudeTable, ArtificialStress, BodyDescription, BodyForceDescription,
+    BoundaryDescription, BulkViscosity, ContactDescription, EffectsDescription, Formulation,
+    MaterialDescription, MaterialModel, Model, ParticleField, PenaltyContactDescription,
+    PressureModel, RampShape, ReferenceSupport, SimulationConfig, StressUpdate, SymmetryPlane,
+    VelocityRamp, WallDescription, WallMotion,
 };
 use toml::Spanned;
 
@@ -677,9 +678,13 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             &w.friction_decay,
             &format!("wall[{name}]"),
         )?;
-        let ramp = parse_ramp(ctx, &w.ramp_time, &w.ramp_shape, &|key: &str| {
-            format!("wall[{name}].{key}")
-        })?;
+        let amplitude = parse_amplitude(
+            ctx,
+            &w.ramp_time,
+            &w.ramp_shape,
+            &w.amplitude,
+            &|key: &str| format!("wall[{name}].{key}"),
+        )?;
         let motion = match &w.velocity {
             Some(v) => {
                 let velocity = ctx.vector::<D>(v, &format!("wall[{name}].velocity"))?;
@@ -705,15 +710,19 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                         ),
                     ));
                 }
-                Some(WallMotion { velocity, ramp })
+                Some(WallMotion {
+                    velocity,
+                    amplitude,
+                })
             }
             None => {
-                if let Some(time) = &w.ramp_time {
+                if let Some((key, span)) = history_key(&w.ramp_time, &w.amplitude) {
                     return Err(ctx.error(
-                        &time.span(),
-                        &format!("wall[{name}].ramp_time"),
-                        "a fixed wall has nothing to ramp; give a `velocity` or drop the key"
-                            .into(),
+                        &span,
+                        &format!("wall[{name}].{key}"),
+                        format!(
+                            "a fixed wall has nothing to scale in time; give a `velocity` or drop `{key}`"
+                        ),
                     ));
                 }
                 None
@@ -969,13 +978,17 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 Some(ctx.body_indices(names, "body_force.bodies", &bodies)?)
             }
         };
-        let ramp = parse_ramp(ctx, &f.ramp_time, &f.ramp_shape, &|key: &str| {
-            format!("body_force.{key}")
-        })?;
+        let amplitude = parse_amplitude(
+            ctx,
+            &f.ramp_time,
+            &f.ramp_shape,
+            &f.amplitude,
+            &|key: &str| format!("body_force.{key}"),
+        )?;
         effects.body_force = Some(BodyForceDescription {
             acceleration,
             bodies: selected,
-            ramp,
+            amplitude,
         });
     }
     if let Some(r) = &file.reference_update {
@@ -2035,14 +2048,57 @@ fn shape_of<const D: usize>(
     ))
 }
 
-/// `ramp_time` / `ramp_shape` of a boundary, a wall or the body force: a [`VelocityRamp`] (smooth
-/// unless `"linear"`), or `None` without `ramp_time`; `field` names a key of the table.
-fn parse_ramp(
+/// The first time-history key given (`ramp_time`, then `amplitude`) with its place, for the
+/// error of a fixed wall or boundary that has no velocity to scale.
+fn history_key(
+    ramp_time: &Option<Spanned<f64>>,
+    amplitude: &Option<Spanned<Vec<Vec<f64>>>>,
+) -> Option<(&'static str, std::ops::Range<usize>)> {
+    ramp_time
+        .as_ref()
+        .map(|t| ("ramp_time", t.span()))
+        .or(amplitude.as_ref().map(|a| ("amplitude", a.span())))
+}
+
+/// The time history of a boundary's velocity, a wall's velocity or the body force: either
+/// `ramp_time` / `ramp_shape`, a [`VelocityRamp`] (smooth unless `ramp_shape = "linear"`), or
+/// `amplitude = [[t, r], ...]`, an [`AmplitudeTable`] (not both); `None` when neither is given.
+/// `field` names a key of the table.
+fn parse_amplitude(
     ctx: &Context<'_>,
     time: &Option<Spanned<f64>>,
     shape: &Option<Spanned<String>>,
+    table: &Option<Spanned<Vec<Vec<f64>>>>,
     field: &dyn Fn(&str) -> String,
-) -> Result<Option<VelocityRamp>, SceneError> {
+) -> Result<Option<Amplitude>, SceneError> {
+    if let Some(table) = table {
+        let span = table.span();
+        if let Some(key) = time
+            .as_ref()
+            .map(|t| t.span())
+            .or(shape.as_ref().map(|s| s.span()))
+        {
+            return Err(ctx.error(
+                &key,
+                &field(if time.is_some() { "ramp_time" } else { "ramp_shape" }),
+                "a ramp and an `amplitude` table both give the time history; keep one (a table can start with a ramp)".into(),
+            ));
+        }
+        let mut points = Vec::with_capacity(table.get_ref().len());
+        for point in table.get_ref() {
+            let [t, r] = point.as_slice() else {
+                return Err(ctx.error(
+                    &span,
+                    &field("amplitude"),
+                    format!("each point must be [time, factor], got {point:?}"),
+                ));
+            };
+            points.push((*t, *r));
+        }
+        let table = AmplitudeTable::new(points)
+            .map_err(|message| ctx.error(&span, &field("amplitude"), message))?;
+        return Ok(Some(Amplitude::Table(table)));
+    }
     let time = match (time, shape) {
         (None, None) => return Ok(None),
         (None, Some(shape)) => {
@@ -2062,7 +2118,7 @@ fn parse_ramp(
         RampShape::Smooth,
         &[("smooth", RampShape::Smooth), ("linear", RampShape::Linear)],
     )?;
-    Ok(Some(VelocityRamp { duration, shape }))
+    Ok(Some(Amplitude::Ramp(VelocityRamp { duration, shape })))
 }
 
 fn build_boundary<const D: usize>(
@@ -2159,21 +2215,23 @@ fn build_boundary<const D: usize>(
             components[k] = true;
         }
     }
-    if let (Some(time), true) = (&t.ramp_time, fixed) {
+    if let (Some((key, span)), true) = (history_key(&t.ramp_time, &t.amplitude), fixed) {
         return Err(ctx.error(
-            &time.span(),
-            &field("ramp_time"),
-            "a fixed boundary has nothing to ramp; give a `velocity` or drop the key".into(),
+            &span,
+            &field(key),
+            format!(
+                "a fixed boundary has nothing to scale in time; give a `velocity` or drop `{key}`"
+            ),
         ));
     }
-    let ramp = parse_ramp(ctx, &t.ramp_time, &t.ramp_shape, &field)?;
+    let amplitude = parse_amplitude(ctx, &t.ramp_time, &t.ramp_shape, &t.amplitude, &field)?;
     Ok(BoundaryDescription {
         name,
         body: body_index,
         particles,
         velocity,
         components,
-        ramp,
+        amplitude,
     })
 }
 

@@ -52,6 +52,7 @@ pub(crate) struct BodyForceTable {
     pub bodies: Option<Spanned<Vec<String>>>,
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
+    pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
 }
 
 /// `[contact]`: particle-to-particle contact between bodies, potential-type (numerics.md §12.2,
@@ -135,6 +136,7 @@ pub(crate) struct WallTable {
     pub velocity: Option<Spanned<Vec<f64>>>,
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
+    pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when
@@ -346,6 +348,7 @@ pub(crate) struct BoundaryTable {
     pub components: Option<Spanned<Vec<String>>>,
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
+    pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
 }
 
 #[derive(Debug, Deserialize)]

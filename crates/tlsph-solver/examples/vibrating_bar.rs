@@ -58,7 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             particles: vec![0],
             velocity: Vector::<1>::zeros(),
             components: [true],
-            ramp: None,
+            amplitude: None,
         }],
         effects: Default::default(),
     };

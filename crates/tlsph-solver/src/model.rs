@@ -352,8 +352,9 @@ pub struct BoundaryDescription<const D: usize> {
     pub velocity: Vector<D>,
     /// Which velocity components are imposed.
     pub components: [bool; D],
-    /// Start-up of the prescribed velocity; `None`: the full velocity from t = 0.
-    pub ramp: Option<VelocityRamp>,
+    /// Time history r(t) of the prescribed velocity, v(t) = r(t) `velocity` (a start-up
+    /// ramp or a table); `None`: the full velocity from t = 0.
+    pub amplitude: Option<Amplitude>,
 }
 
 /// Start-up of a prescribed velocity: v(t) = r(t/T) v with r rising from 0 at t = 0 to 1 at
@@ -417,17 +418,143 @@ impl VelocityRamp {
             }
         }
     }
+}
 
-    /// Rate d r(t/T)/dt of the factor at time `t` \[1/s\] (0 outside the ramp).
-    pub fn rate(&self, t: f64) -> f64 {
-        let s = t / self.duration;
-        if !(0.0..1.0).contains(&s) {
+/// Time history r(t) that scales a prescribed velocity, a wall's velocity or a body force:
+/// v(t) = r(t) v (ours, not in the theses; numerics.md §17 pitfall 12 for the ramp).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Amplitude {
+    /// A start-up from 0 to 1 over a duration, then 1.
+    Ramp(VelocityRamp),
+    /// A piecewise-linear table: loading, holding, unloading, a pulse.
+    Table(AmplitudeTable),
+}
+
+impl From<VelocityRamp> for Amplitude {
+    fn from(ramp: VelocityRamp) -> Self {
+        Amplitude::Ramp(ramp)
+    }
+}
+
+impl Amplitude {
+    /// Factor r(t) at time `t`.
+    pub fn factor(&self, t: f64) -> f64 {
+        match self {
+            Amplitude::Ramp(ramp) => ramp.factor(t),
+            Amplitude::Table(table) => table.factor(t),
+        }
+    }
+
+    /// Integral ∫₀ᵗ r(s) ds \[s\]: the distance travelled by time `t` per unit of the full
+    /// velocity (0 for t ≤ 0).
+    pub fn integral(&self, t: f64) -> f64 {
+        match self {
+            Amplitude::Ramp(ramp) => ramp.integral(t),
+            Amplitude::Table(table) => table.integral(t),
+        }
+    }
+
+    /// Checks the ramp's duration or the table's points; the error says what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        match self {
+            Amplitude::Ramp(ramp) => ramp.validate(),
+            Amplitude::Table(table) => AmplitudeTable::check(&table.points),
+        }
+    }
+}
+
+/// A piecewise-linear amplitude through the points (t_k, r_k): r = r_0 before t_0, linear
+/// between neighbouring points, r_n after the last (the tabular amplitude of finite-element
+/// codes). Times are ≥ 0 and strictly increasing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AmplitudeTable {
+    /// The points (t_k \[s\], r_k).
+    points: Vec<(f64, f64)>,
+    /// ∫₀^{t_k} r ds at each point \[s\].
+    integrals: Vec<f64>,
+}
+
+impl AmplitudeTable {
+    /// The table through `points`: at least two, with finite values and finite times ≥ 0 that
+    /// strictly increase; the error says which point is wrong.
+    pub fn new(points: Vec<(f64, f64)>) -> Result<Self, String> {
+        Self::check(&points)?;
+        let (t0, r0) = points[0];
+        let mut integrals = Vec::with_capacity(points.len());
+        integrals.push(r0 * t0);
+        for pair in points.windows(2) {
+            let ((ta, ra), (tb, rb)) = (pair[0], pair[1]);
+            let last = integrals[integrals.len() - 1];
+            integrals.push(last + 0.5 * (ra + rb) * (tb - ta));
+        }
+        Ok(Self { points, integrals })
+    }
+
+    /// The points (t_k, r_k).
+    pub fn points(&self) -> &[(f64, f64)] {
+        &self.points
+    }
+
+    fn check(points: &[(f64, f64)]) -> Result<(), String> {
+        if points.len() < 2 {
+            return Err(format!(
+                "an amplitude table needs at least two points (t, r), got {}",
+                points.len()
+            ));
+        }
+        for (k, &(t, r)) in points.iter().enumerate() {
+            if !(t.is_finite() && t >= 0.0 && r.is_finite()) {
+                return Err(format!(
+                    "amplitude point {k} ({t}, {r}) needs a finite time ≥ 0 and a finite factor"
+                ));
+            }
+            if k > 0 && t <= points[k - 1].0 {
+                return Err(format!(
+                    "amplitude times must increase: point {k} at t = {t} follows t = {}",
+                    points[k - 1].0
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Index of the segment [t_k, t_{k+1}) holding `t`, or `None` before the first point or
+    /// at and after the last.
+    fn segment(&self, t: f64) -> Option<usize> {
+        let after = self.points.partition_point(|&(tk, _)| tk <= t);
+        (after >= 1 && after < self.points.len()).then(|| after - 1)
+    }
+
+    /// r(t).
+    pub fn factor(&self, t: f64) -> f64 {
+        match self.segment(t) {
+            Some(k) => {
+                let ((ta, ra), (tb, rb)) = (self.points[k], self.points[k + 1]);
+                ra + (rb - ra) * (t - ta) / (tb - ta)
+            }
+            None if t < self.points[0].0 => self.points[0].1,
+            None => self.points[self.points.len() - 1].1,
+        }
+    }
+
+    /// ∫₀ᵗ r ds, exact for the piecewise-linear r (0 for t ≤ 0).
+    pub fn integral(&self, t: f64) -> f64 {
+        if t <= 0.0 {
             return 0.0;
         }
-        match self.shape {
-            RampShape::Linear => 1.0 / self.duration,
-            RampShape::Smooth => {
-                0.5 * std::f64::consts::PI / self.duration * (std::f64::consts::PI * s).sin()
+        let (t0, r0) = self.points[0];
+        if t < t0 {
+            return r0 * t;
+        }
+        match self.segment(t) {
+            Some(k) => {
+                let (ta, ra) = self.points[k];
+                self.integrals[k] + 0.5 * (ra + self.factor(t)) * (t - ta)
+            }
+            None => {
+                let n = self.points.len() - 1;
+                let (tn, rn) = self.points[n];
+                self.integrals[n] + rn * (t - tn)
             }
         }
     }
@@ -457,26 +584,27 @@ pub struct WallDescription<const D: usize> {
 }
 
 /// Translation of a rigid wall at a prescribed velocity (a platen, a piston, a conveyor
-/// belt; ours, not in the theses): v_w(t) = r(t) v with the optional start-up r of a
-/// [`VelocityRamp`], so the plane's point is at X_w + v ∫₀ᵗ r once it has started.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// belt; ours, not in the theses): v_w(t) = r(t) v with the optional [`Amplitude`] r (a
+/// start-up ramp, or a table such as press, hold and withdraw), so the plane's point is at
+/// X_w + v ∫₀ᵗ r.
+#[derive(Debug, Clone, PartialEq)]
 pub struct WallMotion<const D: usize> {
     /// Full velocity v of the plane \[m/s\] (any direction: along the normal it presses or
     /// withdraws, across it the wall slides under the particles).
     pub velocity: Vector<D>,
-    /// Start-up of the velocity; `None`: the full velocity from t = 0.
-    pub ramp: Option<VelocityRamp>,
+    /// Time history r(t) of the velocity; `None`: the full velocity from t = 0.
+    pub amplitude: Option<Amplitude>,
 }
 
 impl<const D: usize> WallMotion<D> {
     /// Velocity of the plane at time `t` \[m/s\].
     pub fn velocity_at(&self, t: f64) -> Vector<D> {
-        self.velocity * self.ramp.map_or(1.0, |r| r.factor(t))
+        self.velocity * self.amplitude.as_ref().map_or(1.0, |r| r.factor(t))
     }
 
     /// Displacement of the plane from its position at t = 0, at time `t` \[m\].
     pub fn displacement_at(&self, t: f64) -> Vector<D> {
-        self.velocity * self.ramp.map_or(t, |r| r.integral(t))
+        self.velocity * self.amplitude.as_ref().map_or(t, |r| r.integral(t))
     }
 }
 
@@ -549,9 +677,10 @@ pub struct BodyForceDescription<const D: usize> {
     pub acceleration: Vector<D>,
     /// Bodies (indices into `Model::bodies`) that feel it; `None` = every body.
     pub bodies: Option<Vec<usize>>,
-    /// Start-up b(t) = r(t/T) b (the shapes of [`VelocityRamp`]), e.g. to load a body by its
-    /// weight without the dynamic overshoot of a sudden load; `None`: the full b from t = 0.
-    pub ramp: Option<VelocityRamp>,
+    /// Time history b(t) = r(t) b: a start-up ramp (the shapes of [`VelocityRamp`]), e.g. to
+    /// load a body by its weight without the dynamic overshoot of a sudden load, or a table (a
+    /// pulse, a load that comes and goes); `None`: the full b from t = 0.
+    pub amplitude: Option<Amplitude>,
 }
 
 /// When to replace the reference configuration by the current one (TLSPH at large strain).

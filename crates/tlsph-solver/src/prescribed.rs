@@ -24,7 +24,7 @@
 //! Nothing here is allocated without `[[boundary]]` tables; the per-step cost is one pass over
 //! the held particles, and one more per declared effect.
 
-use crate::model::VelocityRamp;
+use crate::model::Amplitude;
 use crate::particles::Particles;
 use tlsph_math::Vector;
 
@@ -36,15 +36,15 @@ pub(crate) struct PrescribedSet<const D: usize> {
     pub particles: Vec<usize>,
     pub velocity: Vector<D>,
     pub components: [bool; D],
-    pub ramp: Option<VelocityRamp>,
+    pub amplitude: Option<Amplitude>,
 }
 
 impl<const D: usize> PrescribedSet<D> {
-    /// The set's velocity at time `at` (scaled by its ramp if it has one).
+    /// The set's velocity at time `at` (scaled by its amplitude if it has one).
     fn velocity_at(&self, at: f64) -> Vector<D> {
-        match self.ramp {
+        match &self.amplitude {
             None => self.velocity,
-            Some(ramp) => self.velocity * ramp.factor(at),
+            Some(amplitude) => self.velocity * amplitude.factor(at),
         }
     }
 }

@@ -254,8 +254,9 @@ impl<const D: usize> Simulation<D> {
                         message: "velocity is not finite".into(),
                     });
                 }
-                if let Some(ramp) = b.ramp {
-                    ramp.validate()
+                if let Some(amplitude) = &b.amplitude {
+                    amplitude
+                        .validate()
                         .map_err(|message| SetupError::InvalidBoundary {
                             boundary: b.name.clone(),
                             message,
@@ -266,7 +267,7 @@ impl<const D: usize> Simulation<D> {
                     particles: b.particles.iter().map(|i| info.range.start + i).collect(),
                     velocity: b.velocity,
                     components: b.components,
-                    ramp: b.ramp,
+                    amplitude: b.amplitude.clone(),
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -1939,8 +1940,9 @@ fn build_effects<const D: usize>(
                     message: format!("wall `{}` needs a finite velocity", wall.name),
                 });
             }
-            if let Some(ramp) = &motion.ramp {
-                ramp.validate()
+            if let Some(amplitude) = &motion.amplitude {
+                amplitude
+                    .validate()
                     .map_err(|message| SetupError::InvalidConfig {
                         field: "wall",
                         message: format!("wall `{}`: {message}", wall.name),
@@ -1948,7 +1950,7 @@ fn build_effects<const D: usize>(
             }
         }
         let plane = (wall.point, wall.normal);
-        let rigid = RigidWall::new(&wall.name, plane, wall.motion, &h, &c0, &dx);
+        let rigid = RigidWall::new(&wall.name, plane, wall.motion.clone(), &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
         let friction =
             (coefficients.static_coefficient > 0.0).then(|| rigid.friction(coefficients));
@@ -2106,10 +2108,11 @@ fn build_body_force<const D: usize>(
             })
             .collect::<Result<Vec<_>, _>>()?,
     };
-    if let Some(ramp) = body_force.ramp {
-        ramp.validate()
+    if let Some(amplitude) = &body_force.amplitude {
+        amplitude
+            .validate()
             .map_err(|message| SetupError::InvalidConfig {
-                field: "body_force.ramp_time",
+                field: "body_force.amplitude",
                 message,
             })?;
     }
@@ -2117,7 +2120,7 @@ fn build_body_force<const D: usize>(
         b,
         ranges,
         positions0.to_vec(),
-        body_force.ramp,
+        body_force.amplitude.clone(),
     ))
 }
 

@@ -92,7 +92,7 @@ pub fn model(
                     particles: l.particles,
                     velocity,
                     components,
-                    ramp: None,
+                    amplitude: None,
                 }
             })
             .collect(),

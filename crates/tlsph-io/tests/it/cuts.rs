@@ -193,27 +193,27 @@ fn the_documented_plate_with_a_hole_and_a_notch_parses_as_stated() {
 
 #[test]
 fn a_boundary_ramp_is_read_with_its_shape_and_checked_with_field_and_line() {
-    use tlsph_solver::{RampShape, VelocityRamp};
+    use tlsph_solver::{Amplitude, RampShape, VelocityRamp};
     let with = |keys: &str| {
         PLATE_WITH_HOLE.replace(
             "velocity = [0.0, 0.001]\ncomponents = [\"y\"]",
             &format!("velocity = [0.0, 0.001]\ncomponents = [\"y\"]\n{keys}"),
         )
     };
-    assert_eq!(plate(PLATE_WITH_HOLE).boundaries[0].ramp, None);
+    assert_eq!(plate(PLATE_WITH_HOLE).boundaries[0].amplitude, None);
     assert_eq!(
-        plate(&with("ramp_time = 50.0")).boundaries[0].ramp,
-        Some(VelocityRamp {
+        plate(&with("ramp_time = 50.0")).boundaries[0].amplitude,
+        Some(Amplitude::Ramp(VelocityRamp {
             duration: 50.0,
             shape: RampShape::Smooth
-        })
+        }))
     );
     assert_eq!(
-        plate(&with("ramp_time = 5.0\nramp_shape = \"linear\"")).boundaries[0].ramp,
-        Some(VelocityRamp {
+        plate(&with("ramp_time = 5.0\nramp_shape = \"linear\"")).boundaries[0].amplitude,
+        Some(Amplitude::Ramp(VelocityRamp {
             duration: 5.0,
             shape: RampShape::Linear
-        })
+        }))
     );
     for (keys, bad, field) in [
         ("ramp_time = -1.0", "ramp_time", "boundary[top].ramp_time"),

@@ -6,7 +6,7 @@
 use super::{energy_rows, error_of, line_of};
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
-use tlsph_solver::RampShape;
+use tlsph_solver::{Amplitude, AmplitudeTable, RampShape, VelocityRamp};
 
 /// A 2D block (10 × 5 at 0.05, c = 1) sliding at 0.05 on a floor with friction 0.5 under a
 /// gravity of 0.01 that rises over 2 time units.
@@ -67,8 +67,13 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
     };
     assert_eq!(model.effects.walls[0].static_friction, Some(0.7));
     assert_eq!(model.effects.walls[0].friction_decay, Some(3.0));
-    let ramp = model.effects.body_force.as_ref().unwrap().ramp.unwrap();
-    assert_eq!((ramp.duration, ramp.shape), (2.0, RampShape::Linear));
+    assert_eq!(
+        model.effects.body_force.as_ref().unwrap().amplitude,
+        Some(Amplitude::Ramp(VelocityRamp {
+            duration: 2.0,
+            shape: RampShape::Linear
+        }))
+    );
     // Without the keys: frictionless, and the full body force from t = 0.
     let plain = SLIDER
         .replace("friction = 0.5\n", "")
@@ -78,7 +83,7 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
         panic!("2D")
     };
     assert_eq!(model.effects.walls[0].friction, 0.0);
-    assert_eq!(model.effects.body_force.as_ref().unwrap().ramp, None);
+    assert_eq!(model.effects.body_force.as_ref().unwrap().amplitude, None);
 }
 
 #[test]
@@ -200,10 +205,15 @@ fn a_sliding_floor_parses_drags_the_block_along_and_the_total_closes() {
     let DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
-    let motion = model.effects.walls[0].motion.unwrap();
+    let motion = model.effects.walls[0].motion.as_ref().unwrap();
     assert_eq!((motion.velocity.x, motion.velocity.y), (-0.05, 0.0));
-    let ramp = motion.ramp.unwrap();
-    assert_eq!((ramp.duration, ramp.shape), (0.5, RampShape::Linear));
+    assert_eq!(
+        motion.amplitude,
+        Some(Amplitude::Ramp(VelocityRamp {
+            duration: 0.5,
+            shape: RampShape::Linear
+        }))
+    );
     let final_velocity = |text: &str, name: &str| {
         let scene = parse_scene(text, name).unwrap();
         let tmp = tempfile::tempdir().unwrap();
@@ -264,7 +274,7 @@ fn wall_motion_errors_name_the_field_and_line() {
             "velocity = [-0.05, 0.0]\nramp",
             "ramp",
             "wall[floor].ramp_time",
-            "a fixed wall has nothing to ramp",
+            "a fixed wall has nothing to scale in time",
             "ramp_time = 0.5",
         ),
         (
@@ -316,4 +326,83 @@ fn a_floor_sliding_across_a_symmetry_plane_with_friction_is_refused() {
          friction = 0.5\nvelocity = [-0.01, 0.0]\n\n[[wall]]\n",
     );
     assert!(parse_scene(&platen, "p.toml").is_ok());
+}
+
+/// `SLIDER` with a grip pulling the block's top row up at 0.01 under the boundary keys
+/// `keys`.
+fn slider_with_grip(keys: &str) -> String {
+    format!(
+        "{SLIDER}\n[[boundary]]\nname = \"grip\"\nbody = \"block\"\nbox = {{ min = [0.0, 0.2], max = [0.5, 0.25] }}\nvelocity = [0.0, 0.01]\ncomponents = [\"y\"]\n{keys}\n"
+    )
+}
+
+#[test]
+fn amplitude_tables_parse_for_walls_boundaries_and_the_body_force_and_bad_ones_are_named() {
+    let table = "amplitude = [[0.0, 0.0], [1.0, 1.0], [3.0, -0.5]]\n";
+    let text = slider_with_grip(table)
+        .replace(
+            "friction = 0.5\n",
+            &format!("friction = 0.5\nvelocity = [0.02, 0.0]\n{table}"),
+        )
+        .replace("ramp_time = 2.0\nramp_shape = \"linear\"\n", table);
+    let scene = parse_scene(&text, "slider.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let expected = Some(Amplitude::Table(
+        AmplitudeTable::new(vec![(0.0, 0.0), (1.0, 1.0), (3.0, -0.5)]).unwrap(),
+    ));
+    assert_eq!(model.boundaries[0].amplitude, expected);
+    assert_eq!(
+        model.effects.walls[0].motion.as_ref().unwrap().amplitude,
+        expected
+    );
+    assert_eq!(
+        model.effects.body_force.as_ref().unwrap().amplitude,
+        expected
+    );
+    // Each mistake is named with its table's key and line.
+    for (text, field, needle) in [
+        // A ramp and a table both.
+        (
+            slider_with_grip(&format!("ramp_time = 1.0\n{table}")),
+            "boundary[grip].ramp_time",
+            "ramp_time = 1.0",
+        ),
+        (
+            slider_with_grip("amplitude = [[0.0, 0.0], [1.0]]"),
+            "boundary[grip].amplitude",
+            "amplitude =",
+        ),
+        (
+            slider_with_grip("amplitude = [[0.0, 0.0], [2.0, 1.0], [1.0, 0.0]]"),
+            "boundary[grip].amplitude",
+            "amplitude =",
+        ),
+        (
+            SLIDER.replace("friction = 0.5\n", &format!("friction = 0.5\n{table}")),
+            "wall[floor].amplitude",
+            "amplitude =",
+        ),
+        (
+            SLIDER.replace(
+                "ramp_time = 2.0\nramp_shape = \"linear\"\n",
+                "amplitude = [[-1.0, 0.0], [1.0, 1.0]]\n",
+            ),
+            "body_force.amplitude",
+            "amplitude =",
+        ),
+    ] {
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert_eq!(e.line, Some(line_of(&text, needle)), "{e}");
+    }
+    // A fixed boundary has no velocity to scale.
+    let fixed = slider_with_grip(table).replace(
+        "velocity = [0.0, 0.01]\ncomponents = [\"y\"]",
+        "fixed = true",
+    );
+    let e = error_of(&fixed);
+    assert_eq!(e.field, "boundary[grip].amplitude", "{e}");
+    assert!(e.message.contains("fixed boundary"), "{e}");
 }

@@ -8,13 +8,16 @@
 //! then closes the total to round-off, where a work integral of the staggered velocities
 //! would leave an O(Δt) boundary term).
 //!
-//! With a ramp b(t) = r(t/T) b the column is the work of the time-dependent force in the same
-//! form: E = −r(t) Π(t) + ∫₀ᵗ r'(s) Π(s) ds, Π = Σ m b·(x − x_start), whose rate is −Σ m b(t)·v.
-//! The integral is accumulated by the trapezoidal rule over the evaluation times and is
-//! constant once the ramp is complete, so from then on the column is exact again.
+//! With an amplitude b(t) = r(t) b (a ramp or a table) the column is the work of the
+//! time-dependent force in the same form: E = −r(t) Π(t) + ∫₀ᵗ r'(s) Π(s) ds,
+//! Π = Σ m b·(x − x_start), whose rate is −Σ m b(t)·v. The integral is accumulated step by
+//! step with Π linear between the evaluation times and r exact (through its integral ∫ r, so
+//! a table's corners inside a step cost nothing: the trapezoidal rule on r' Π, used before,
+//! left a first-order error at each corner, 7.5 % of the final kinetic energy for a pulse
+//! table), and is constant while r is, so then the column is exact again.
 
 use super::{Effect, EffectContext};
-use crate::model::VelocityRamp;
+use crate::model::Amplitude;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_math::Vector;
@@ -39,14 +42,27 @@ pub struct BodyForce<const D: usize> {
     chunk_sums: Vec<f64>,
 }
 
-/// The start-up of a ramped body force and the integral ∫ r' Π dt accumulated over it.
-#[derive(Debug, Clone, Copy)]
+/// The amplitude of a time-dependent body force and the integral ∫ r' Π dt accumulated over it.
+#[derive(Debug, Clone)]
 struct RampState {
-    ramp: VelocityRamp,
+    ramp: Amplitude,
     /// ∫₀ᵗ r'(s) Π(s) ds up to the last evaluation \[J\].
     integral: f64,
-    /// Time and r'(t) Π(t) of the last evaluation (trapezoidal rule).
-    last: Option<(f64, f64)>,
+    /// The last evaluation.
+    last: Option<Evaluation>,
+}
+
+/// What the next step's share of ∫ r' Π dt needs from the last evaluation.
+#[derive(Debug, Clone, Copy)]
+struct Evaluation {
+    /// Time t_a \[s\].
+    time: f64,
+    /// Π(t_a) = Σ m b·(x − x_start) \[J\].
+    lowered: f64,
+    /// r(t_a).
+    factor: f64,
+    /// ∫₀^{t_a} r \[s\].
+    integral: f64,
 }
 
 impl<const D: usize> BodyForce<D> {
@@ -56,7 +72,7 @@ impl<const D: usize> BodyForce<D> {
         acceleration: Vector<D>,
         mut ranges: Vec<Range<usize>>,
         start: Vec<Vector<D>>,
-        ramp: Option<VelocityRamp>,
+        ramp: Option<Amplitude>,
     ) -> Self {
         ranges.sort_by_key(|r| r.start);
         ranges.dedup();
@@ -85,7 +101,7 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
-        let factor = self.ramp.map_or(1.0, |r| r.ramp.factor(ctx.time));
+        let factor = self.ramp.as_ref().map_or(1.0, |r| r.ramp.factor(ctx.time));
         let b = self.acceleration;
         let p = ctx.particles;
         let start = &self.start;
@@ -115,11 +131,22 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
         self.potential = match &mut self.ramp {
             None => -work,
             Some(state) => {
-                let (t, rate) = (ctx.time, state.ramp.rate(ctx.time) * work);
-                if let Some((t0, rate0)) = state.last {
-                    state.integral += 0.5 * (rate0 + rate) * (t - t0);
+                let (t, integral) = (ctx.time, state.ramp.integral(ctx.time));
+                if let Some(last) = state.last {
+                    let span = t - last.time;
+                    if span > 0.0 {
+                        // ∫ r' Π ds over the step with Π linear between the evaluations and r
+                        // exact: Π_a (r_b − r_a) + (Π_b − Π_a)(r_b − (I_b − I_a)/Δt), I = ∫ r.
+                        state.integral += last.lowered * (factor - last.factor)
+                            + (work - last.lowered) * (factor - (integral - last.integral) / span);
+                    }
                 }
-                state.last = Some((t, rate));
+                state.last = Some(Evaluation {
+                    time: t,
+                    lowered: work,
+                    factor,
+                    integral,
+                });
                 -factor * work + state.integral
             }
         };

@@ -71,7 +71,7 @@ impl<const D: usize> RigidWall<D> {
         WallFriction {
             name: format!("{}_friction", self.name),
             geometry: Arc::clone(&self.geometry),
-            motion: self.motion,
+            motion: self.motion.clone(),
             coefficients,
             resultant: Vector::zeros(),
         }
@@ -80,7 +80,9 @@ impl<const D: usize> RigidWall<D> {
 
 /// The wall's displacement from its place at t = 0, at time `t` (zero for a fixed wall).
 fn wall_shift<const D: usize>(motion: &Option<WallMotion<D>>, t: f64) -> Vector<D> {
-    motion.map_or(Vector::zeros(), |m| m.displacement_at(t))
+    motion
+        .as_ref()
+        .map_or(Vector::zeros(), |m| m.displacement_at(t))
 }
 
 impl<const D: usize> Effect<D> for RigidWall<D> {
@@ -178,6 +180,7 @@ impl<const D: usize> Effect<D> for WallFriction<D> {
         let shift = wall_shift(&self.motion, ctx.time);
         let wall_velocity = self
             .motion
+            .as_ref()
             .map_or(Vector::zeros(), |m| m.velocity_at(ctx.time + 0.5 * kick));
         out.par_iter_mut()
             .enumerate()

@@ -124,7 +124,7 @@ fn a_step_does_not_allocate_after_warm_up() {
             particles: (0..30).collect(),
             velocity: Vector::<2>::zeros(),
             components: [true, true],
-            ramp: None,
+            amplitude: None,
         });
         let n = allocations_during_steps(m2, 5);
         assert_eq!(

@@ -284,7 +284,7 @@ fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>,
                 particles: ends(left),
                 velocity: Vector::<2>::new(v, 0.0),
                 components: [true, false],
-                ramp: None,
+                amplitude: None,
             });
         }
         let mut sim = Simulation::new(m).unwrap();

@@ -377,7 +377,7 @@ fn clamp_and_pull(m: &mut Model<1>, pulled: usize, speed: f64, ramp: Option<Velo
         particles: vec![0],
         velocity: Vector::<1>::zeros(),
         components: [true],
-        ramp: None,
+        amplitude: None,
     });
     m.boundaries.push(BoundaryDescription {
         name: "pull".into(),
@@ -385,7 +385,7 @@ fn clamp_and_pull(m: &mut Model<1>, pulled: usize, speed: f64, ramp: Option<Velo
         particles: vec![pulled],
         velocity: Vector::<1>::new(speed),
         components: [true],
-        ramp,
+        amplitude: ramp.map(Into::into),
     });
 }
 
@@ -498,10 +498,13 @@ fn a_ramp_without_a_positive_duration_is_rejected() {
         particles: vec![9],
         velocity: Vector::<1>::new(0.01),
         components: [true],
-        ramp: Some(VelocityRamp {
-            duration: 0.0,
-            shape: RampShape::Linear,
-        }),
+        amplitude: Some(
+            VelocityRamp {
+                duration: 0.0,
+                shape: RampShape::Linear,
+            }
+            .into(),
+        ),
     });
     let Err(error) = Simulation::new(m) else {
         panic!("a ramp of zero duration must be rejected");
@@ -659,7 +662,7 @@ fn bond_metrics_flag_lattice_neighbours_pulled_out_of_the_kernel_support() {
         particles: top.clone(),
         velocity: Vector::<2>::new(0.0, speed),
         components: [true, true],
-        ramp: None,
+        amplitude: None,
     });
     m.boundaries.push(BoundaryDescription {
         name: "hold".into(),
@@ -667,7 +670,7 @@ fn bond_metrics_flag_lattice_neighbours_pulled_out_of_the_kernel_support() {
         particles: rest,
         velocity: Vector::<2>::zeros(),
         components: [true, true],
-        ramp: None,
+        amplitude: None,
     });
     let mut sim = Simulation::new(m).unwrap();
     sim.step().unwrap();

@@ -216,7 +216,7 @@ fn a_block_bouncing_off_a_fixed_body_books_no_work_on_the_fixed_particles() {
         particles: (0..n_base).collect(),
         velocity: Vector::<2>::zeros(),
         components: [true, true],
-        ramp: None,
+        amplitude: None,
     });
     let mut sim = Simulation::new(model).unwrap();
     let p0 = body_momentum(&sim, 0);
@@ -350,17 +350,20 @@ pub(super) fn block_on_base(gravity: Vector<2>, friction: f64, end_time: f64) ->
             particles: clamped,
             velocity: Vector::<2>::zeros(),
             components: [true, true],
-            ramp: None,
+            amplitude: None,
         }],
         effects: EffectsDescription {
             penalty_contact: penalty(friction),
             body_force: Some(BodyForceDescription {
                 acceleration: gravity,
                 bodies: Some(vec![1]),
-                ramp: Some(VelocityRamp {
-                    duration: 100.0,
-                    shape: RampShape::Smooth,
-                }),
+                amplitude: Some(
+                    VelocityRamp {
+                        duration: 100.0,
+                        shape: RampShape::Smooth,
+                    }
+                    .into(),
+                ),
             }),
             ..Default::default()
         },

@@ -43,7 +43,7 @@ fn driven_block_with(reference_update: Option<f64>, support: ReferenceSupport) -
             particles: vec![i],
             velocity: h * x,
             components: [true, true],
-            ramp: None,
+            amplitude: None,
         })
         .collect();
     m.effects.reference_update = reference_update.map(|strain_threshold| ReferenceUpdate {

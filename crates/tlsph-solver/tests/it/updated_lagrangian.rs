@@ -382,7 +382,7 @@ fn fixed_particles_do_not_drift_with_the_xsph_average_of_moving_neighbours() {
         particles: (0..24).collect(),
         velocity: Vector::<2>::zeros(),
         components: [true, true],
-        ramp: None,
+        amplitude: None,
     });
     m.effects.xsph = Some(0.5);
     let mut sim = Simulation::new(m).unwrap();

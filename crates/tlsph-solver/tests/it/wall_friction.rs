@@ -25,7 +25,7 @@ pub(super) fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64
     m.effects.body_force = Some(BodyForceDescription {
         acceleration: g,
         bodies: None,
-        ramp: None,
+        amplitude: None,
     });
     m.effects.walls.push(WallDescription {
         name: "floor".into(),
@@ -183,10 +183,13 @@ fn on_incline(
     );
     m.effects.walls[0].static_friction = static_friction;
     m.effects.walls[0].friction_decay = decay;
-    m.effects.body_force.as_mut().unwrap().ramp = Some(VelocityRamp {
-        duration: 2.0,
-        shape: RampShape::Smooth,
-    });
+    m.effects.body_force.as_mut().unwrap().amplitude = Some(
+        VelocityRamp {
+            duration: 2.0,
+            shape: RampShape::Smooth,
+        }
+        .into(),
+    );
     let mut sim = Simulation::new(m).unwrap();
     let mut samples = Vec::new();
     sim.run(|s, r| {
