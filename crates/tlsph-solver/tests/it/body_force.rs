@@ -238,43 +238,54 @@ fn only_the_declared_bodies_feel_it_in_the_updated_lagrangian_formulation_too() 
     }
 }
 
-#[test]
-fn a_ramped_body_force_follows_its_ramp_and_books_its_work() {
-    // A free block under b(t) = ½(1 − cos πt/T) b: uniform, so it moves rigidly with
-    // v(t) = ½ b (t − (T/π) sin πt/T) for t ≤ T and v = b (t − T/2) after; leap-frog with a
-    // varying acceleration is second order, and the column −r Π + ∫ r' Π dt closes the
-    // total to the trapezoidal rule's accuracy.
+/// A free 6 × 6 block (dx 0.05, at rest) under b(t) = r(t) (0, −1) with the time history
+/// `amplitude`, run to `end_time` with the default CFL number times `cfl_scale`. Returns the
+/// largest velocity error of a particle relative to `v_end`, the expected final velocity, and
+/// the largest |E − E0| over the run relative to the final kinetic energy.
+fn free_block_under(
+    amplitude: Amplitude,
+    end_time: f64,
+    cfl_scale: f64,
+    v_end: Vector<2>,
+) -> (f64, f64) {
     let dx = 0.05;
-    let g = Vector::<2>::new(0.0, -1.0);
-    let ramp_time = 0.4;
     let mut m = with_gravity(
         model(
             lattice([6, 6], dx),
             dx,
             |_| Vector::<2>::zeros(),
             Setup {
-                end_time: 1.0,
+                end_time,
                 ..Setup::default()
             },
         ),
-        g,
+        Vector::<2>::new(0.0, -1.0),
     );
-    m.effects.body_force.as_mut().unwrap().amplitude = Some(
-        VelocityRamp {
-            duration: ramp_time,
-            shape: RampShape::Smooth,
-        }
-        .into(),
-    );
+    m.config.cfl *= cfl_scale;
+    m.effects.body_force.as_mut().unwrap().amplitude = Some(amplitude);
     let mut sim = Simulation::new(m).unwrap();
     let mass: f64 = sim.masses().iter().sum();
-    let t_end = 1.0;
-    let v_end = g * (t_end - 0.5 * ramp_time);
     let drift = energy_error(&mut sim, 0.5 * mass * v_end.norm_squared());
     let mut worst: f64 = 0.0;
     for i in 0..sim.n_particles() {
         worst = worst.max((sim.velocity(i) - v_end).norm() / v_end.norm());
     }
+    (worst, drift)
+}
+
+#[test]
+fn a_ramped_body_force_follows_its_ramp_and_books_its_work() {
+    // A free block under b(t) = ½(1 − cos πt/T) b: uniform, so it moves rigidly with
+    // v(t) = ½ b (t − (T/π) sin πt/T) for t ≤ T and v = b (t − T/2) after; leap-frog with a
+    // varying acceleration is second order, and the column −r Π + ∫ r' Π dt closes the
+    // total to second order too.
+    let ramp_time = 0.4;
+    let ramp = VelocityRamp {
+        duration: ramp_time,
+        shape: RampShape::Smooth,
+    };
+    let v_end = Vector::<2>::new(0.0, -(1.0 - 0.5 * ramp_time));
+    let (worst, drift) = free_block_under(ramp.into(), 1.0, 1.0, v_end);
     eprintln!("ramp: velocity {worst:.1e}, energy {drift:.1e}");
     // Measured: velocity 2.6e-5, energy 9e-5 of the final kinetic energy (bounds 1e-3).
     assert!(worst < 1e-3, "velocity off by {worst:e}");
@@ -293,8 +304,6 @@ fn a_body_force_with_an_amplitude_table_gives_the_impulse_of_its_table() {
     // error is O(Δt²) with a factor that depends on where the corner falls within its step, so
     // not exactly 4); bound 2.5, where a first-order slip would give 2. The body-force column
     // integrates ∫ r' Π dt exactly in r: its former trapezoidal rule on r' Π left 7.5e-2 here.
-    let dx = 0.05;
-    let g = Vector::<2>::new(0.0, -1.0);
     let table = AmplitudeTable::new(vec![
         (0.0, 0.0),
         (0.1, 1.0),
@@ -303,31 +312,9 @@ fn a_body_force_with_an_amplitude_table_gives_the_impulse_of_its_table() {
         (0.6, 0.0),
     ])
     .unwrap();
-    let run = |cfl_scale: f64| {
-        let mut m = with_gravity(
-            model(
-                lattice([6, 6], dx),
-                dx,
-                |_| Vector::<2>::zeros(),
-                Setup {
-                    end_time: 0.8,
-                    ..Setup::default()
-                },
-            ),
-            g,
-        );
-        m.config.cfl *= cfl_scale;
-        m.effects.body_force.as_mut().unwrap().amplitude = Some(Amplitude::Table(table.clone()));
-        let mut sim = Simulation::new(m).unwrap();
-        let mass: f64 = sim.masses().iter().sum();
-        let v_end = g * 0.225;
-        let drift = energy_error(&mut sim, 0.5 * mass * v_end.norm_squared());
-        let mut worst: f64 = 0.0;
-        for i in 0..sim.n_particles() {
-            worst = worst.max((sim.velocity(i) - v_end).norm() / v_end.norm());
-        }
-        (worst, drift)
-    };
+    let v_end = Vector::<2>::new(0.0, -0.225);
+    let run =
+        |cfl_scale: f64| free_block_under(Amplitude::Table(table.clone()), 0.8, cfl_scale, v_end);
     let (velocity, energy) = run(1.0);
     let (velocity_fine, energy_fine) = run(0.5);
     eprintln!(

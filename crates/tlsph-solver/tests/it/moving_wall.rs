@@ -257,6 +257,12 @@ fn a_wall_motion_that_cannot_be_followed_is_refused_naming_the_wall() {
     assert!(message.contains("ramp duration"), "{message}");
 }
 
+/// ∫₀ᵗ f by the midpoint rule on `n` intervals.
+fn midpoint_integral(f: impl Fn(f64) -> f64, t: f64, n: usize) -> f64 {
+    let h = t / n as f64;
+    (0..n).map(|k| f((k as f64 + 0.5) * h) * h).sum()
+}
+
 #[test]
 fn the_wall_travels_the_integral_of_its_ramped_velocity() {
     // d(t) = v ∫₀ᵗ r: checked against the midpoint rule on 20 000 intervals (error below
@@ -272,9 +278,7 @@ fn the_wall_travels_the_integral_of_its_ramped_velocity() {
             amplitude: Some(ramp.into()),
         };
         for t in [0.0, 0.3, 1.0, 1.9, 2.0, 5.0] {
-            let n = 20_000;
-            let h = t / n as f64;
-            let quadrature: f64 = (0..n).map(|k| ramp.factor((k as f64 + 0.5) * h) * h).sum();
+            let quadrature = midpoint_integral(|s| ramp.factor(s), t, 20_000);
             assert!(
                 (ramp.integral(t) - quadrature).abs() < 1e-9,
                 "{shape:?} at {t}: {} vs {quadrature}",
@@ -322,9 +326,7 @@ fn an_amplitude_table_interpolates_its_points_and_integrates_exactly() {
     assert_eq!(table.integral(-1.0), 0.0);
     let amplitude = Amplitude::Table(table.clone());
     for t in [0.2, 0.5, 0.9, 1.3, 2.0, 2.4, 3.0] {
-        let n = 40_000;
-        let h = t / n as f64;
-        let quadrature: f64 = (0..n).map(|k| table.factor((k as f64 + 0.5) * h) * h).sum();
+        let quadrature = midpoint_integral(|s| table.factor(s), t, 40_000);
         assert!(
             (amplitude.integral(t) - quadrature).abs() < 1e-8,
             "at {t}: {} vs {quadrature}",
