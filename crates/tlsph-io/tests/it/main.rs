@@ -10,6 +10,7 @@ mod contact;
 mod contact_symmetry;
 mod cuts;
 mod damage;
+mod documented_scenes;
 mod failure;
 mod kernel_groups;
 mod materials;
