@@ -16,7 +16,7 @@ use tlsph_solver::{
     BoundaryDescription, BulkViscosity, ContactDescription, EffectsDescription, Formulation,
     MaterialDescription, MaterialModel, Model, ParticleField, PenaltyContactDescription,
     PressureModel, RampShape, ReferenceSupport, SimulationConfig, StressUpdate, SymmetryPlane,
-    VelocityRamp, WallDescription, WallMotion,
+    TableShape, VelocityRamp, WallDescription, WallMotion,
 };
 use toml::Spanned;
 
@@ -683,6 +683,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             &w.ramp_time,
             &w.ramp_shape,
             &w.amplitude,
+            &w.amplitude_shape,
             &|key: &str| format!("wall[{name}].{key}"),
         )?;
         let motion = match &w.velocity {
@@ -983,6 +984,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             &f.ramp_time,
             &f.ramp_shape,
             &f.amplitude,
+            &f.amplitude_shape,
             &|key: &str| format!("body_force.{key}"),
         )?;
         effects.body_force = Some(BodyForceDescription {
@@ -2062,15 +2064,24 @@ fn history_key(
 
 /// The time history of a boundary's velocity, a wall's velocity or the body force: either
 /// `ramp_time` / `ramp_shape`, a [`VelocityRamp`] (smooth unless `ramp_shape = "linear"`), or
-/// `amplitude = [[t, r], ...]`, an [`AmplitudeTable`] (not both); `None` when neither is given.
+/// `amplitude = [[t, r], ...]`, an [`AmplitudeTable`] joined as `amplitude_shape` says
+/// (`"linear"`, default, or `"smooth-step"`), not both; `None` when neither is given.
 /// `field` names a key of the table.
 fn parse_amplitude(
     ctx: &Context<'_>,
     time: &Option<Spanned<f64>>,
     shape: &Option<Spanned<String>>,
     table: &Option<Spanned<Vec<Vec<f64>>>>,
+    table_shape: &Option<Spanned<String>>,
     field: &dyn Fn(&str) -> String,
 ) -> Result<Option<Amplitude>, SceneError> {
+    if let (Some(shape), None) = (table_shape, table) {
+        return Err(ctx.error(
+            &shape.span(),
+            &field("amplitude_shape"),
+            "needs an `amplitude` table (a ramp's shape is `ramp_shape`)".into(),
+        ));
+    }
     if let Some(table) = table {
         let span = table.span();
         if let Some(key) = time
@@ -2095,9 +2106,19 @@ fn parse_amplitude(
             };
             points.push((*t, *r));
         }
+        let shape = ctx.keyword(
+            table_shape.as_ref(),
+            &field("amplitude_shape"),
+            "amplitude shape",
+            TableShape::Linear,
+            &[
+                ("linear", TableShape::Linear),
+                ("smooth-step", TableShape::SmoothStep),
+            ],
+        )?;
         let table = AmplitudeTable::new(points)
             .map_err(|message| ctx.error(&span, &field("amplitude"), message))?;
-        return Ok(Some(Amplitude::Table(table)));
+        return Ok(Some(Amplitude::Table(table.with_shape(shape))));
     }
     let time = match (time, shape) {
         (None, None) => return Ok(None),
@@ -2224,7 +2245,14 @@ fn build_boundary<const D: usize>(
             ),
         ));
     }
-    let amplitude = parse_amplitude(ctx, &t.ramp_time, &t.ramp_shape, &t.amplitude, &field)?;
+    let amplitude = parse_amplitude(
+        ctx,
+        &t.ramp_time,
+        &t.ramp_shape,
+        &t.amplitude,
+        &t.amplitude_shape,
+        &field,
+    )?;
     Ok(BoundaryDescription {
         name,
         body: body_index,

@@ -53,6 +53,7 @@ pub(crate) struct BodyForceTable {
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
+    pub amplitude_shape: Option<Spanned<String>>,
 }
 
 /// `[contact]`: particle-to-particle contact between bodies, potential-type (numerics.md §12.2,
@@ -137,6 +138,7 @@ pub(crate) struct WallTable {
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
+    pub amplitude_shape: Option<Spanned<String>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when
@@ -349,6 +351,7 @@ pub(crate) struct BoundaryTable {
     pub ramp_time: Option<Spanned<f64>>,
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
+    pub amplitude_shape: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

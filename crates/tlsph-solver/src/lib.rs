@@ -37,8 +37,8 @@ pub use model::{
     BoundaryDescription, BulkViscosity, ContactDescription, DamageModel, EffectsDescription,
     ElasticDamage, ElasticPlastic, FailureModel, Formulation, InitialTimeStep, MaterialDescription,
     MaterialModel, Model, PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport,
-    ReferenceUpdate, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, Thermal,
-    VelocityRamp, WallDescription, WallMotion, INITIAL_YIELD_TOLERANCE,
+    ReferenceUpdate, SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, TableShape,
+    Thermal, VelocityRamp, WallDescription, WallMotion, INITIAL_YIELD_TOLERANCE,
 };
 pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -463,15 +463,46 @@ impl Amplitude {
     }
 }
 
-/// A piecewise-linear amplitude through the points (t_k, r_k): r = r_0 before t_0, linear
-/// between neighbouring points, r_n after the last (the tabular amplitude of finite-element
-/// codes). Times are ≥ 0 and strictly increasing.
+/// An amplitude through the points (t_k, r_k): r = r_0 before t_0, r_n after the last, and
+/// between neighbouring points r = r_a + (r_b − r_a) w(ξ), ξ = (t − t_a)/(t_b − t_a), with
+/// w of its [`TableShape`] (the tabular and smooth-step amplitudes of finite-element codes).
+/// Times are ≥ 0 and strictly increasing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AmplitudeTable {
     /// The points (t_k \[s\], r_k).
     points: Vec<(f64, f64)>,
-    /// ∫₀^{t_k} r ds at each point \[s\].
+    /// ∫₀^{t_k} r ds at each point \[s\] (the same for both shapes: ∫₀¹ w = ½).
     integrals: Vec<f64>,
+    /// How r goes from one point to the next.
+    shape: TableShape,
+}
+
+/// How an [`AmplitudeTable`] goes between its points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TableShape {
+    /// w(ξ) = ξ: straight pieces; the rate jumps at every point.
+    Linear,
+    /// w(ξ) = ξ³ (10 − 15ξ + 6ξ²): the quintic smooth step, whose first and second
+    /// derivatives vanish at both ends, so r, its rate and its second rate are continuous
+    /// through every point (a velocity that starts, holds and stops without a jump in
+    /// acceleration).
+    SmoothStep,
+}
+
+impl TableShape {
+    /// w(ξ) and its integral W(ξ) = ∫₀^ξ w, for 0 ≤ ξ ≤ 1.
+    fn weight(self, xi: f64) -> (f64, f64) {
+        match self {
+            TableShape::Linear => (xi, 0.5 * xi * xi),
+            TableShape::SmoothStep => {
+                let xi3 = xi * xi * xi;
+                (
+                    xi3 * (10.0 - 15.0 * xi + 6.0 * xi * xi),
+                    xi3 * xi * (2.5 - 3.0 * xi + xi * xi),
+                )
+            }
+        }
+    }
 }
 
 impl AmplitudeTable {
@@ -487,7 +518,22 @@ impl AmplitudeTable {
             let last = integrals[integrals.len() - 1];
             integrals.push(last + 0.5 * (ra + rb) * (tb - ta));
         }
-        Ok(Self { points, integrals })
+        Ok(Self {
+            points,
+            integrals,
+            shape: TableShape::Linear,
+        })
+    }
+
+    /// The same points joined by `shape` (a new table is [`TableShape::Linear`]).
+    pub fn with_shape(mut self, shape: TableShape) -> Self {
+        self.shape = shape;
+        self
+    }
+
+    /// How the table goes between its points.
+    pub fn shape(&self) -> TableShape {
+        self.shape
     }
 
     /// The points (t_k, r_k).
@@ -525,19 +571,26 @@ impl AmplitudeTable {
         (after >= 1 && after < self.points.len()).then(|| after - 1)
     }
 
+    /// Segment `k`'s points and w, W at `t` in it.
+    fn within(&self, k: usize, t: f64) -> ((f64, f64), (f64, f64), f64, f64) {
+        let ((ta, ra), (tb, rb)) = (self.points[k], self.points[k + 1]);
+        let (w, big_w) = self.shape.weight((t - ta) / (tb - ta));
+        ((ta, ra), (tb, rb), w, big_w)
+    }
+
     /// r(t).
     pub fn factor(&self, t: f64) -> f64 {
         match self.segment(t) {
             Some(k) => {
-                let ((ta, ra), (tb, rb)) = (self.points[k], self.points[k + 1]);
-                ra + (rb - ra) * (t - ta) / (tb - ta)
+                let ((_, ra), (_, rb), w, _) = self.within(k, t);
+                ra + (rb - ra) * w
             }
             None if t < self.points[0].0 => self.points[0].1,
             None => self.points[self.points.len() - 1].1,
         }
     }
 
-    /// ∫₀ᵗ r ds, exact for the piecewise-linear r (0 for t ≤ 0).
+    /// ∫₀ᵗ r ds, exact for either shape (0 for t ≤ 0).
     pub fn integral(&self, t: f64) -> f64 {
         if t <= 0.0 {
             return 0.0;
@@ -548,8 +601,8 @@ impl AmplitudeTable {
         }
         match self.segment(t) {
             Some(k) => {
-                let (ta, ra) = self.points[k];
-                self.integrals[k] + 0.5 * (ra + self.factor(t)) * (t - ta)
+                let ((ta, ra), (tb, rb), _, big_w) = self.within(k, t);
+                self.integrals[k] + ra * (t - ta) + (rb - ra) * (tb - ta) * big_w
             }
             None => {
                 let n = self.points.len() - 1;

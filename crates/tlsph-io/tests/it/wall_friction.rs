@@ -6,7 +6,7 @@
 use super::{energy_rows, error_of, line_of};
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
-use tlsph_solver::{Amplitude, AmplitudeTable, RampShape, VelocityRamp};
+use tlsph_solver::{Amplitude, AmplitudeTable, RampShape, TableShape, VelocityRamp};
 
 /// A 2D block (10 × 5 at 0.05, c = 1) sliding at 0.05 on a floor with friction 0.5 under a
 /// gravity of 0.01 that rises over 2 time units.
@@ -361,6 +361,19 @@ fn amplitude_tables_parse_for_walls_boundaries_and_the_body_force_and_bad_ones_a
         model.effects.body_force.as_ref().unwrap().amplitude,
         expected
     );
+    // Smooth steps between the points, on request.
+    let scene = parse_scene(
+        &slider_with_grip(&format!("{table}amplitude_shape = \"smooth-step\"")),
+        "slider.toml",
+    )
+    .unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let Some(Amplitude::Table(grip)) = &model.boundaries[0].amplitude else {
+        panic!("a table")
+    };
+    assert_eq!(grip.shape(), TableShape::SmoothStep);
     // Each mistake is named with its table's key and line.
     for (text, field, needle) in [
         // A ramp and a table both.
@@ -368,6 +381,17 @@ fn amplitude_tables_parse_for_walls_boundaries_and_the_body_force_and_bad_ones_a
             slider_with_grip(&format!("ramp_time = 1.0\n{table}")),
             "boundary[grip].ramp_time",
             "ramp_time = 1.0",
+        ),
+        (
+            slider_with_grip(&format!("{table}amplitude_shape = \"cubic\"")),
+            "boundary[grip].amplitude_shape",
+            "amplitude_shape =",
+        ),
+        // A shape without a table.
+        (
+            slider_with_grip("ramp_time = 1.0\namplitude_shape = \"linear\""),
+            "boundary[grip].amplitude_shape",
+            "amplitude_shape =",
         ),
         (
             slider_with_grip("amplitude = [[0.0, 0.0], [1.0]]"),

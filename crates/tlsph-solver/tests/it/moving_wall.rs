@@ -7,7 +7,7 @@ use super::wall_friction::block_on_floor;
 use super::{lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    Amplitude, AmplitudeTable, Model, RampShape, SetupError, Simulation, VelocityRamp,
+    Amplitude, AmplitudeTable, Model, RampShape, SetupError, Simulation, TableShape, VelocityRamp,
     WallDescription, WallMotion,
 };
 
@@ -344,5 +344,55 @@ fn an_amplitude_table_interpolates_its_points_and_integrates_exactly() {
     ] {
         let error = AmplitudeTable::new(points.clone()).unwrap_err();
         assert!(error.contains(why), "{points:?}: {error}");
+    }
+}
+
+#[test]
+fn a_smooth_step_table_passes_its_points_with_zero_rate_and_integrates_exactly() {
+    // The table above joined by the quintic smooth step w = ξ³(10 − 15ξ + 6ξ²): it takes the
+    // same values at the points and half-way between them (w(½) = ½), its rate vanishes at
+    // every point (central differences of 1e-6 on either side: below 1e-4, where the straight
+    // pieces have rates of 4), and ∫ r matches the midpoint rule as before. The integral
+    // over a whole piece is the linear table's, so both agree after the last point.
+    let points = vec![(0.5, 1.0), (1.0, 3.0), (2.0, -1.0), (2.5, 0.0)];
+    let linear = AmplitudeTable::new(points.clone()).unwrap();
+    let smooth = AmplitudeTable::new(points.clone())
+        .unwrap()
+        .with_shape(TableShape::SmoothStep);
+    assert_eq!(smooth.shape(), TableShape::SmoothStep);
+    for (t, r) in [
+        (0.0, 1.0),
+        (0.75, 2.0),
+        (1.0, 3.0),
+        (1.5, 1.0),
+        (2.25, -0.5),
+        (9.0, 0.0),
+    ] {
+        assert!(
+            (smooth.factor(t) - r).abs() < 1e-14,
+            "r({t}) = {}",
+            smooth.factor(t)
+        );
+    }
+    // A quarter of the way the step has risen w(¼) = 0.103515625 of the piece, not ¼.
+    assert!((smooth.factor(0.625) - (1.0 + 2.0 * 0.103515625)).abs() < 1e-14);
+    let eps = 1e-6;
+    for &(t, _) in &points[1..3] {
+        for side in [-1.0, 1.0] {
+            let at = t + side * 2.0 * eps;
+            let rate = (smooth.factor(at + eps) - smooth.factor(at - eps)) / (2.0 * eps);
+            assert!(rate.abs() < 1e-4, "rate {rate} near t = {t}");
+        }
+    }
+    for t in [0.2, 0.6, 0.9, 1.3, 2.0, 2.4, 3.0] {
+        let quadrature = midpoint_integral(|s| smooth.factor(s), t, 40_000);
+        assert!(
+            (smooth.integral(t) - quadrature).abs() < 1e-8,
+            "at {t}: {} vs {quadrature}",
+            smooth.integral(t)
+        );
+    }
+    for t in [1.0, 2.0, 2.5, 4.0] {
+        assert!((smooth.integral(t) - linear.integral(t)).abs() < 1e-14);
     }
 }

@@ -7,7 +7,7 @@ use super::{clamp_and_pull, lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
     Amplitude, AmplitudeTable, BodyForceDescription, BoundaryDescription, EffectsDescription,
-    Formulation, Model, RampShape, Simulation, VelocityRamp,
+    Formulation, Model, RampShape, Simulation, TableShape, VelocityRamp,
 };
 
 /// A 2D block of 12 × 12 particles (side 0.6) held at its bottom row (y fixed, x free) and
@@ -66,22 +66,32 @@ fn a_pulled_block_books_the_work_of_its_grip_and_the_energy_closes() {
     // kinetic and internal energy beyond E0 is the grip's work: without the column the total
     // would be off by 100 % of it. With it, the total closes to the integrator's second order,
     // for a start-up ramp and for a table that pulls, holds and pushes back (its corners
-    // included). The grip travels 0.01 ∫₀ᵗ r: each drift moves it at the velocity of the
-    // drift's midpoint, exact on a table's straight pieces and second order at its corners:
-    // measured 9e-16 (no amplitude), 1e-6 (ramp) and 9e-5 (table, at CFL 0.3) of the travel
-    // at the end; bound 5e-4.
+    // included), with straight pieces or smooth steps. The grip travels 0.01 ∫₀ᵗ r: each
+    // drift moves it at the velocity of the drift's midpoint, exact on a table's straight
+    // pieces and second order at its corners:
+    // measured 9e-16 (no amplitude), 1e-6 (ramp), 9e-5 (table, at CFL 0.3) and 1.9e-6 (the
+    // same table as smooth steps, which have no corners) of the travel at the end; bound 5e-4.
     let linear = Amplitude::from(VelocityRamp {
         duration: 0.5,
         shape: RampShape::Linear,
     });
-    let table = AmplitudeTable::new(vec![(0.0, 0.0), (0.4, 1.0), (1.2, 1.0), (1.7, -0.6)])
-        .map(Amplitude::Table)
-        .unwrap();
+    let points = vec![(0.0, 0.0), (0.4, 1.0), (1.2, 1.0), (1.7, -0.6)];
+    let table = Amplitude::Table(AmplitudeTable::new(points.clone()).unwrap());
+    let smooth = Amplitude::Table(
+        AmplitudeTable::new(points)
+            .unwrap()
+            .with_shape(TableShape::SmoothStep),
+    );
     for formulation in [
         Formulation::TotalLagrangianCorrected,
         Formulation::UpdatedLagrangian,
     ] {
-        for ramp in [None, Some(linear.clone()), Some(table.clone())] {
+        for ramp in [
+            None,
+            Some(linear.clone()),
+            Some(table.clone()),
+            Some(smooth.clone()),
+        ] {
             let errors = [0.3, 0.15].map(|cfl| {
                 let mut m = pulled_block(formulation, ramp.clone(), 2.0);
                 m.config.cfl = cfl;
