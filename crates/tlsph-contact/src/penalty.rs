@@ -105,7 +105,8 @@ pub struct PenaltyLaw {
     range: f64,
     /// d0 = ½(Δx_A + Δx_B): tangential half-width and penetration depth of the zone \[m\].
     reach: f64,
-    /// Kinetic and static friction coefficients (both 0: frictionless).
+    /// Kinetic and static friction coefficients and the decay between them (μ_s = 0:
+    /// frictionless).
     friction: FrictionCoefficients,
 }
 

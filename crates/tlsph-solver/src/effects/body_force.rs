@@ -36,16 +36,16 @@ pub struct BodyForce<const D: usize> {
     start: Vec<Vector<D>>,
     /// Potential energy gained −Σ m b·(x − x_start) at the last evaluation \[J\].
     potential: f64,
-    /// Start-up of b, while it is still to be completed.
-    ramp: Option<RampState>,
+    /// The time history r(t) of b and its work integral; `None`: b is constant.
+    history: Option<History>,
     /// Per-chunk partial sums (reused every step).
     chunk_sums: Vec<f64>,
 }
 
 /// The amplitude of a time-dependent body force and the integral ∫ r' Π dt accumulated over it.
 #[derive(Debug, Clone)]
-struct RampState {
-    ramp: Amplitude,
+struct History {
+    amplitude: Amplitude,
     /// ∫₀ᵗ r'(s) Π(s) ds up to the last evaluation \[J\].
     integral: f64,
     /// The last evaluation.
@@ -66,13 +66,13 @@ struct Evaluation {
 }
 
 impl<const D: usize> BodyForce<D> {
-    /// The acceleration `acceleration` on the particles in `ranges` (duplicates merged);
-    /// `start` holds the initial positions of the real particles.
+    /// The acceleration `acceleration`, scaled by `amplitude` when given, on the particles in
+    /// `ranges` (duplicates merged); `start` holds the initial positions of the real particles.
     pub(crate) fn new(
         acceleration: Vector<D>,
         mut ranges: Vec<Range<usize>>,
         start: Vec<Vector<D>>,
-        ramp: Option<Amplitude>,
+        amplitude: Option<Amplitude>,
     ) -> Self {
         ranges.sort_by_key(|r| r.start);
         ranges.dedup();
@@ -81,8 +81,8 @@ impl<const D: usize> BodyForce<D> {
             ranges,
             start,
             potential: 0.0,
-            ramp: ramp.map(|ramp| RampState {
-                ramp,
+            history: amplitude.map(|amplitude| History {
+                amplitude,
                 integral: 0.0,
                 last: None,
             }),
@@ -101,7 +101,10 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
-        let factor = self.ramp.as_ref().map_or(1.0, |r| r.ramp.factor(ctx.time));
+        let factor = self
+            .history
+            .as_ref()
+            .map_or(1.0, |h| h.amplitude.factor(ctx.time));
         let b = self.acceleration;
         let p = ctx.particles;
         let start = &self.start;
@@ -128,10 +131,10 @@ impl<const D: usize> Effect<D> for BodyForce<D> {
         // `out` is taken over by their driver after this call, whose work then holds what it
         // took to move them against b).
         let work: f64 = self.chunk_sums.iter().sum();
-        self.potential = match &mut self.ramp {
+        self.potential = match &mut self.history {
             None => -work,
             Some(state) => {
-                let (t, integral) = (ctx.time, state.ramp.integral(ctx.time));
+                let (t, integral) = (ctx.time, state.amplitude.integral(ctx.time));
                 if let Some(last) = state.last {
                     let span = t - last.time;
                     if span > 0.0 {
