@@ -153,3 +153,45 @@ fn contact_without_hourglass_control_gets_a_note() {
     }
     assert!(notes(TWO_BLOCKS).is_empty(), "no contact, no note");
 }
+
+#[test]
+fn static_friction_without_a_decay_gets_a_note() {
+    // docs/scene-format.md, wall friction and penalty contact: with μ_s > μ_k and no decay, a
+    // slip that starts at a face's edge runs through the face. The check names each such
+    // surface, and is silent with a decay or with one coefficient.
+    let notes = |text: &str| parse_scene(text, "blocks.toml").unwrap().overview().notes;
+    let wall = |keys: &str| {
+        format!(
+            "{TWO_BLOCKS}\n[[wall]]\nname = \"floor\"\npoint = [0.0, -1.0]\nnormal = [0.0, 1.0]\n{keys}"
+        )
+    };
+    let advised = notes(&wall("friction = 0.2\nstatic_friction = 0.5\n"));
+    assert_eq!(advised.len(), 1, "{advised:?}");
+    assert!(
+        advised[0].starts_with("wall `floor` has static_friction"),
+        "{advised:?}"
+    );
+    assert!(advised[0].contains("friction_decay"));
+    assert!(notes(&wall(
+        "friction = 0.2\nstatic_friction = 0.5\nfriction_decay = 50.0\n"
+    ))
+    .is_empty());
+    assert!(notes(&wall("friction = 0.2\n")).is_empty());
+    assert!(notes(&wall("friction = 0.2\nstatic_friction = 0.2\n")).is_empty());
+    // The penalty contact, with hourglass control so that only this note remains.
+    let contact = |keys: &str| {
+        format!(
+            "{TWO_BLOCKS}\n[hourglass_control]\ncoefficient = 1.0\n\n[contact]\nlaw = \"penalty\"\n{keys}"
+        )
+    };
+    let advised = notes(&contact("friction = 0.2\nstatic_friction = 0.5\n"));
+    assert_eq!(advised.len(), 1, "{advised:?}");
+    assert!(
+        advised[0].starts_with("the penalty contact has static_friction"),
+        "{advised:?}"
+    );
+    assert!(notes(&contact(
+        "friction = 0.2\nstatic_friction = 0.5\nfriction_decay = 50.0\n"
+    ))
+    .is_empty());
+}
