@@ -202,7 +202,7 @@ impl PenaltyLaw {
 
     /// Whether the law has friction (μ_s > 0: a pair can stick, even when μ_k = 0).
     pub fn has_friction(&self) -> bool {
-        self.friction.static_coefficient > 0.0
+        self.friction.is_frictional()
     }
 
     /// Force on K at offset `d` = x_K − x_I from surface particle I with unit normal `normal`:

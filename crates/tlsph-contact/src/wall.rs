@@ -90,6 +90,34 @@ impl FrictionCoefficients {
         }
     }
 
+    /// Checks μ_k (finite, ≥ 0), μ_s (finite, ≥ μ_k) and d_c (finite, ≥ 0); the error says
+    /// which is wrong.
+    pub fn check(&self) -> Result<(), String> {
+        let kinetic = self.kinetic;
+        if !(kinetic.is_finite() && kinetic >= 0.0) {
+            return Err(format!(
+                "the friction coefficient must be finite and ≥ 0, got {kinetic}"
+            ));
+        }
+        let static_coefficient = self.static_coefficient;
+        if !(static_coefficient.is_finite() && static_coefficient >= kinetic) {
+            return Err(format!(
+                "the static friction coefficient must be finite and ≥ the kinetic {kinetic}, got {static_coefficient}"
+            ));
+        }
+        match self.decay {
+            Some(decay) if !(decay.is_finite() && decay >= 0.0) => Err(format!(
+                "the friction decay coefficient must be finite and ≥ 0, got {decay}"
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether the surface has friction at all (μ_s > 0: it can hold, even when μ_k = 0).
+    pub fn is_frictional(&self) -> bool {
+        self.static_coefficient > 0.0
+    }
+
     /// Friction force per unit of normal force, given the stick `demand` (the force that
     /// would stop the sliding within the step, per unit of normal force) and the sliding
     /// `speed`: the demand itself while it is at most μ_s (the contact sticks), else the

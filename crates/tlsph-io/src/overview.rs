@@ -6,7 +6,7 @@
 use crate::scene::{DimensionModel, Scene};
 use std::fmt;
 use tlsph_materials::EquationOfState;
-use tlsph_solver::{Formulation, Model};
+use tlsph_solver::{Formulation, FrictionCoefficients, Model};
 
 /// One body of a [`SceneOverview`].
 #[derive(Debug, Clone, PartialEq)]
@@ -158,20 +158,18 @@ fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
             );
         }
     }
-    let abrupt = |friction: f64, static_friction: Option<f64>, decay: Option<f64>| {
-        decay.is_none() && static_friction.is_some_and(|mu_s| mu_s > friction)
-    };
+    let abrupt = |f: &FrictionCoefficients| f.decay.is_none() && f.static_coefficient > f.kinetic;
     let effects = &model.effects;
     let surfaces = effects
         .walls
         .iter()
-        .filter(|w| abrupt(w.friction, w.static_friction, w.friction_decay))
+        .filter(|w| abrupt(&w.friction))
         .map(|w| format!("wall `{}`", w.name))
         .chain(
             effects
                 .penalty_contact
                 .iter()
-                .filter(|c| abrupt(c.friction, c.static_friction, c.friction_decay))
+                .filter(|c| abrupt(&c.friction))
                 .map(|_| "the penalty contact".to_string()),
         );
     for surface in surfaces {

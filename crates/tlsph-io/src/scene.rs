@@ -14,9 +14,9 @@ use tlsph_solver::stability::StabilityThresholds;
 use tlsph_solver::{
     Amplitude, AmplitudeTable, ArtificialStress, BodyDescription, BodyForceDescription,
     BoundaryDescription, BulkViscosity, ContactDescription, EffectsDescription, Formulation,
-    MaterialDescription, MaterialModel, Model, ParticleField, PenaltyContactDescription,
-    PressureModel, RampShape, ReferenceSupport, SimulationConfig, StressUpdate, SymmetryPlane,
-    TableShape, VelocityRamp, WallDescription, WallMotion,
+    FrictionCoefficients, MaterialDescription, MaterialModel, Model, ParticleField,
+    PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, SimulationConfig,
+    StressUpdate, SymmetryPlane, TableShape, VelocityRamp, WallDescription, WallMotion,
 };
 use toml::Spanned;
 
@@ -248,16 +248,16 @@ impl Context<'_> {
         }
     }
 
-    /// The `friction` (kinetic μ ≥ 0, default 0), `static_friction` (μ_s ≥ μ, default none:
-    /// the same) and `friction_decay` (d_c ≥ 0, only with μ_s > μ) keys of the table at
-    /// `prefix` (a wall or the contact).
-    fn friction_keys(
+    /// The friction of the table at `prefix` (a wall or the contact) from its keys `friction`
+    /// (kinetic μ ≥ 0, default 0), `static_friction` (μ_s ≥ μ, default μ) and
+    /// `friction_decay` (d_c ≥ 0, only with μ_s > μ).
+    fn friction_coefficients(
         &self,
         friction: &Option<Spanned<f64>>,
         static_friction: &Option<Spanned<f64>>,
         friction_decay: &Option<Spanned<f64>>,
         prefix: &str,
-    ) -> Result<FrictionKeys, SceneError> {
+    ) -> Result<FrictionCoefficients, SceneError> {
         let kinetic = match friction {
             Some(mu) => self.non_negative(mu, &format!("{prefix}.friction"))?,
             None => 0.0,
@@ -296,10 +296,10 @@ impl Context<'_> {
             }
             None => None,
         };
-        Ok(FrictionKeys {
-            friction: kinetic,
-            static_friction: static_coefficient,
-            friction_decay: decay,
+        Ok(FrictionCoefficients {
+            kinetic,
+            static_coefficient: static_coefficient.unwrap_or(kinetic),
+            decay,
         })
     }
 
@@ -668,11 +668,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 ));
             }
         }
-        let FrictionKeys {
-            friction,
-            static_friction,
-            friction_decay,
-        } = ctx.friction_keys(
+        let friction = ctx.friction_coefficients(
             &w.friction,
             &w.static_friction,
             &w.friction_decay,
@@ -695,10 +691,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 // mirrored into a second wall, moving as its mirror image).
                 let sliding_across_a_mirror = file.symmetry_plane.iter().find(|p| {
                     axis_index(p.axis.get_ref()).is_some_and(|a| {
-                        a < D
-                            && unit[a] == 0.0
-                            && velocity[a] != 0.0
-                            && static_friction.unwrap_or(friction) > 0.0
+                        a < D && unit[a] == 0.0 && velocity[a] != 0.0 && friction.is_frictional()
                     })
                 });
                 if let Some(plane) = sliding_across_a_mirror {
@@ -734,8 +727,6 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             point,
             normal,
             friction,
-            static_friction,
-            friction_decay,
             motion,
         });
     }
@@ -1149,7 +1140,7 @@ fn build_contact<const D: usize>(
         LawKeys::Penalty {
             stiffness: factor(&c.stiffness, "stiffness")?,
             range: factor(&c.range, "range")?,
-            friction: ctx.friction_keys(
+            friction: ctx.friction_coefficients(
                 &c.friction,
                 &c.static_friction,
                 &c.friction_decay,
@@ -1243,9 +1234,7 @@ fn build_contact<const D: usize>(
         } => Contact::Penalty(PenaltyContactDescription {
             stiffness,
             range,
-            friction: friction.friction,
-            static_friction: friction.static_friction,
-            friction_decay: friction.friction_decay,
+            friction,
             pairs,
         }),
     })
@@ -1260,15 +1249,8 @@ enum LawKeys {
     Penalty {
         stiffness: f64,
         range: f64,
-        friction: FrictionKeys,
+        friction: FrictionCoefficients,
     },
-}
-
-/// The checked friction keys of a `[[wall]]` or the penalty `[contact]`.
-struct FrictionKeys {
-    friction: f64,
-    static_friction: Option<f64>,
-    friction_decay: Option<f64>,
 }
 
 fn build_body<const D: usize>(

@@ -24,7 +24,7 @@ use crate::step::{
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
-use tlsph_contact::{FrictionCoefficients, PenaltyLaw, PotentialLaw};
+use tlsph_contact::{PenaltyLaw, PotentialLaw};
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
@@ -1926,13 +1926,13 @@ fn build_effects<const D: usize>(
         let h = per_particle(&|b| b.smoothing_length);
         let c0 = per_particle(&|b| b.sound_speed0);
         let dx = per_particle(&|b| b.spacing);
-        let coefficients =
-            checked_friction(wall.friction, wall.static_friction, wall.friction_decay).map_err(
-                |message| SetupError::InvalidConfig {
-                    field: "wall",
-                    message: format!("wall `{}`: {message}", wall.name),
-                },
-            )?;
+        let coefficients = wall.friction;
+        coefficients
+            .check()
+            .map_err(|message| SetupError::InvalidConfig {
+                field: "wall",
+                message: format!("wall `{}`: {message}", wall.name),
+            })?;
         if let Some(motion) = &wall.motion {
             if !motion.velocity.iter().all(|v| v.is_finite()) {
                 return Err(SetupError::InvalidConfig {
@@ -1952,8 +1952,9 @@ fn build_effects<const D: usize>(
         let plane = (wall.point, wall.normal);
         let rigid = RigidWall::new(&wall.name, plane, wall.motion.clone(), &h, &c0, &dx);
         // Friction right after its wall: it sees this step's normal kick.
-        let friction =
-            (coefficients.static_coefficient > 0.0).then(|| rigid.friction(coefficients));
+        let friction = coefficients
+            .is_frictional()
+            .then(|| rigid.friction(coefficients));
         effects.push(BookedEffect::new(Box::new(rigid)));
         if let Some(friction) = friction {
             effects.push(BookedEffect::new(Box::new(friction)));
@@ -2229,38 +2230,6 @@ fn contact_pairs<const D: usize>(
     }
 }
 
-/// The Coulomb coefficients of a wall or a penalty contact: kinetic μ_k = `kinetic` (finite,
-/// ≥ 0), static μ_s = `static_coefficient` (finite, ≥ μ_k; `None`: μ_k) and the decay
-/// coefficient d_c = `decay` of the sliding coefficient (finite, ≥ 0; `None`: none),
-/// numerics.md §13 `[C]`. The error says which is wrong.
-fn checked_friction(
-    kinetic: f64,
-    static_coefficient: Option<f64>,
-    decay: Option<f64>,
-) -> Result<FrictionCoefficients, String> {
-    if !(kinetic.is_finite() && kinetic >= 0.0) {
-        return Err(format!(
-            "the friction coefficient must be finite and ≥ 0, got {kinetic}"
-        ));
-    }
-    let static_coefficient = static_coefficient.unwrap_or(kinetic);
-    if !(static_coefficient.is_finite() && static_coefficient >= kinetic) {
-        return Err(format!(
-            "the static friction coefficient must be finite and ≥ the kinetic {kinetic}, got {static_coefficient}"
-        ));
-    }
-    if let Some(decay) = decay.filter(|d| !(d.is_finite() && *d >= 0.0)) {
-        return Err(format!(
-            "the friction decay coefficient must be finite and ≥ 0, got {decay}"
-        ));
-    }
-    Ok(FrictionCoefficients {
-        kinetic,
-        static_coefficient,
-        decay,
-    })
-}
-
 /// Fuller's particle-type penalty contact (numerics.md §12.1) for the declared body pairs (or
 /// every pair of different bodies): k_c = s E* d0^{d−1} with E* the smaller Young's modulus,
 /// R = range · d0, kinetic and static friction coefficients. A body cannot be
@@ -2284,14 +2253,10 @@ fn build_penalty_contact<const D: usize>(
             return fail(field, format!("must be finite and > 0, got {value}"));
         }
     }
-    let friction = match checked_friction(
-        contact.friction,
-        contact.static_friction,
-        contact.friction_decay,
-    ) {
-        Ok(friction) => friction,
-        Err(message) => return fail("penalty_contact.friction", message),
-    };
+    let friction = contact.friction;
+    if let Err(message) = friction.check() {
+        return fail("penalty_contact.friction", message);
+    }
     let nb = bodies.len();
     let pairs = contact_pairs(
         model,
@@ -2554,7 +2519,8 @@ pub fn check_kinetic_energy<const D: usize>(
 mod penalty_contact_tests {
     use super::*;
     use crate::model::{
-        BodyDescription, MaterialDescription, PenaltyContactDescription, SimulationConfig,
+        BodyDescription, FrictionCoefficients, MaterialDescription, PenaltyContactDescription,
+        SimulationConfig,
     };
     use tlsph_kernels::KernelKind;
     use tlsph_materials::LinearElastic;
@@ -2603,9 +2569,7 @@ mod penalty_contact_tests {
         let description = PenaltyContactDescription {
             stiffness: 1.0,
             range: 1.0,
-            friction: 0.0,
-            static_friction: None,
-            friction_decay: None,
+            friction: FrictionCoefficients::single(0.0),
             pairs: None,
         };
         let mut contact = build_penalty_contact(

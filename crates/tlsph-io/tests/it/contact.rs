@@ -3,6 +3,7 @@
 
 use super::{energy_rows, error_of, line_of};
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
+use tlsph_solver::FrictionCoefficients;
 
 const TWO_BARS: &str = r#"
 [simulation]
@@ -166,8 +167,9 @@ fn a_penalty_contact_table_becomes_the_penalty_description() {
     };
     assert!(model.effects.contact.is_none());
     let c = model.effects.penalty_contact.as_ref().unwrap();
-    assert_eq!((c.stiffness, c.range, c.friction), (1.0, 1.5, 0.3));
-    assert_eq!((c.static_friction, c.friction_decay), (None, None));
+    assert_eq!((c.stiffness, c.range), (1.0, 1.5));
+    // Without `static_friction` one coefficient sticks and slides.
+    assert_eq!(c.friction, FrictionCoefficients::single(0.3));
     assert_eq!(c.pairs, Some(vec![(0, 1)]));
     let scene = parse_scene(
         &penalty_bars(
@@ -184,8 +186,12 @@ friction_decay = 20.0
     };
     let c = model.effects.penalty_contact.as_ref().unwrap();
     assert_eq!(
-        (c.static_friction, c.friction_decay),
-        (Some(0.5), Some(20.0))
+        c.friction,
+        FrictionCoefficients {
+            kinetic: 0.3,
+            static_coefficient: 0.5,
+            decay: Some(20.0)
+        }
     );
     // `law = "potential"` is the default law, spelled out.
     let scene = parse_scene(

@@ -6,7 +6,9 @@
 use super::{energy_rows, error_of, line_of};
 use std::fs;
 use tlsph_io::{parse_scene, run_scene_to_dir, DimensionModel};
-use tlsph_solver::{Amplitude, AmplitudeTable, RampShape, TableShape, VelocityRamp};
+use tlsph_solver::{
+    Amplitude, AmplitudeTable, FrictionCoefficients, RampShape, TableShape, VelocityRamp,
+};
 
 /// A 2D block (10 × 5 at 0.05, c = 1) sliding at 0.05 on a floor with friction 0.5 under a
 /// gravity of 0.01 that rises over 2 time units.
@@ -54,9 +56,10 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
     let DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
-    assert_eq!(model.effects.walls[0].friction, 0.5);
-    assert_eq!(model.effects.walls[0].static_friction, None);
-    assert_eq!(model.effects.walls[0].friction_decay, None);
+    assert_eq!(
+        model.effects.walls[0].friction,
+        FrictionCoefficients::single(0.5)
+    );
     let with_static = SLIDER.replace(
         "friction = 0.5\n",
         "friction = 0.5\nstatic_friction = 0.7\nfriction_decay = 3.0\n",
@@ -65,8 +68,14 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
     let DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
-    assert_eq!(model.effects.walls[0].static_friction, Some(0.7));
-    assert_eq!(model.effects.walls[0].friction_decay, Some(3.0));
+    assert_eq!(
+        model.effects.walls[0].friction,
+        FrictionCoefficients {
+            kinetic: 0.5,
+            static_coefficient: 0.7,
+            decay: Some(3.0)
+        }
+    );
     assert_eq!(
         model.effects.body_force.as_ref().unwrap().amplitude,
         Some(Amplitude::Ramp(VelocityRamp {
@@ -82,7 +91,10 @@ fn wall_friction_and_the_body_force_ramp_become_the_description() {
     let DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
-    assert_eq!(model.effects.walls[0].friction, 0.0);
+    assert_eq!(
+        model.effects.walls[0].friction,
+        FrictionCoefficients::single(0.0)
+    );
     assert_eq!(model.effects.body_force.as_ref().unwrap().amplitude, None);
 }
 

@@ -4,8 +4,9 @@
 use super::{lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    Amplitude, AmplitudeTable, BodyForceDescription, BoundaryDescription, Formulation, Model,
-    RampShape, SetupError, Simulation, SymmetryPlane, VelocityRamp, WallDescription,
+    Amplitude, AmplitudeTable, BodyForceDescription, BoundaryDescription, Formulation,
+    FrictionCoefficients, Model, RampShape, SetupError, Simulation, SymmetryPlane, VelocityRamp,
+    WallDescription,
 };
 
 fn with_gravity<const D: usize>(mut m: Model<D>, g: Vector<D>) -> Model<D> {
@@ -169,9 +170,7 @@ fn a_block_dropped_on_a_wall_gets_the_weight_impulse_back_and_energy_closes() {
         name: "floor".into(),
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
-        friction: 0.0,
-        static_friction: None,
-        friction_decay: None,
+        friction: FrictionCoefficients::single(0.0),
         motion: None,
     });
     let mut sim = Simulation::new(m).unwrap();

@@ -8,8 +8,8 @@
 use super::contact::{body, config, materials};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    ContactDescription, EffectsDescription, Formulation, Model, PenaltyContactDescription,
-    Simulation, SymmetryPlane,
+    ContactDescription, EffectsDescription, Formulation, FrictionCoefficients, Model,
+    PenaltyContactDescription, Simulation, SymmetryPlane,
 };
 
 /// Spacing of both bodies.
@@ -229,9 +229,7 @@ fn a_half_model_in_contact_at_its_plane_moves_like_the_full_model() {
                 penalty_contact: Some(PenaltyContactDescription {
                     stiffness: 1.0,
                     range: 1.0,
-                    friction: 0.3,
-                    static_friction: None,
-                    friction_decay: None,
+                    friction: FrictionCoefficients::single(0.3),
                     pairs: None,
                 }),
                 ..Default::default()
@@ -244,9 +242,7 @@ fn a_half_model_in_contact_at_its_plane_moves_like_the_full_model() {
                 penalty_contact: Some(PenaltyContactDescription {
                     stiffness: 1.0,
                     range: 1.0,
-                    friction: 0.3,
-                    static_friction: None,
-                    friction_decay: None,
+                    friction: FrictionCoefficients::single(0.3),
                     pairs: None,
                 }),
                 ..Default::default()

@@ -3,7 +3,7 @@
 
 use super::{lattice, model, Setup};
 use tlsph_math::{Tensor, Vector};
-use tlsph_solver::{Formulation, Simulation, WallDescription};
+use tlsph_solver::{Formulation, FrictionCoefficients, Simulation, WallDescription};
 
 #[test]
 fn an_elastic_block_bounces_off_a_wall_with_its_momentum_reversed() {
@@ -27,9 +27,7 @@ fn an_elastic_block_bounces_off_a_wall_with_its_momentum_reversed() {
         name: "floor".into(),
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
-        friction: 0.0,
-        static_friction: None,
-        friction_decay: None,
+        friction: FrictionCoefficients::single(0.0),
         motion: None,
     });
     let mut sim = Simulation::new(m).unwrap();

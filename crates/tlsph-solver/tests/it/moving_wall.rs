@@ -7,8 +7,8 @@ use super::wall_friction::block_on_floor;
 use super::{lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    Amplitude, AmplitudeTable, Model, RampShape, SetupError, Simulation, TableShape, VelocityRamp,
-    WallDescription, WallMotion,
+    Amplitude, AmplitudeTable, FrictionCoefficients, Model, RampShape, SetupError, Simulation,
+    TableShape, VelocityRamp, WallDescription, WallMotion,
 };
 
 /// A 1D bar of 200 particles on [0, 1] (ρ = 1, M = 1, c = 1) at rest, and a wall at x = 0
@@ -28,9 +28,7 @@ fn piston_into_bar(speed: f64, amplitude: Option<Amplitude>, end_time: f64) -> M
         name: "piston".into(),
         point: Vector::<1>::zeros(),
         normal: Vector::<1>::new(1.0),
-        friction: 0.0,
-        static_friction: None,
-        friction_decay: None,
+        friction: FrictionCoefficients::single(0.0),
         motion: Some(WallMotion {
             velocity: Vector::<1>::new(speed),
             amplitude,

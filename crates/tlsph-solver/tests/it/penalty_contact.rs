@@ -17,9 +17,7 @@ pub(super) fn penalty(friction: f64) -> Option<PenaltyContactDescription> {
     Some(PenaltyContactDescription {
         stiffness: 1.0,
         range: 1.0,
-        friction,
-        static_friction: None,
-        friction_decay: None,
+        friction: FrictionCoefficients::single(friction),
         pairs: None,
     })
 }
@@ -285,22 +283,22 @@ fn penalty_contact_setup_errors_name_the_field() {
         "penalty_contact.range"
     );
     assert_eq!(
-        field_of(with(&|c| c.friction = -0.1)),
+        field_of(with(&|c| c.friction.kinetic = -0.1)),
         "penalty_contact.friction"
     );
     assert_eq!(
-        field_of(with(&|c| c.static_friction = Some(0.05))),
+        field_of(with(&|c| c.friction.static_coefficient = 0.05)),
         "penalty_contact.friction",
         "a static coefficient below the kinetic 0.1"
     );
     assert_eq!(
-        field_of(with(&|c| c.static_friction = Some(f64::INFINITY))),
+        field_of(with(&|c| c.friction.static_coefficient = f64::INFINITY)),
         "penalty_contact.friction"
     );
     assert_eq!(
         field_of(with(&|c| {
-            c.static_friction = Some(0.5);
-            c.friction_decay = Some(-1.0);
+            c.friction.static_coefficient = 0.5;
+            c.friction.decay = Some(-1.0);
         })),
         "penalty_contact.friction"
     );
@@ -457,10 +455,7 @@ impl SlopeMotion {
 fn on_incline(coefficients: FrictionCoefficients, launch: f64) -> SlopeMotion {
     let mut model = block_on_base(Vector::<2>::new(0.0003, -0.001), 0.0, 400.0);
     model.effects.hourglass_control = Some(1.0);
-    let contact = model.effects.penalty_contact.as_mut().unwrap();
-    contact.friction = coefficients.kinetic;
-    contact.static_friction = Some(coefficients.static_coefficient);
-    contact.friction_decay = coefficients.decay;
+    model.effects.penalty_contact.as_mut().unwrap().friction = coefficients;
     for v in &mut model.bodies[1].velocities {
         v[0] = launch;
     }

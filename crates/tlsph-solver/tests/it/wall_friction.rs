@@ -5,7 +5,8 @@
 use super::{lattice, model, Setup};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    BodyForceDescription, Model, RampShape, SetupError, Simulation, VelocityRamp, WallDescription,
+    BodyForceDescription, FrictionCoefficients, Model, RampShape, SetupError, Simulation,
+    VelocityRamp, WallDescription,
 };
 
 /// Block of 10 × 5 particles at dx = 0.05 (0.5 × 0.25; ρ = 1, M = 1, c = 1) resting on the
@@ -31,9 +32,7 @@ pub(super) fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64
         name: "floor".into(),
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
-        friction: mu,
-        static_friction: None,
-        friction_decay: None,
+        friction: FrictionCoefficients::single(mu),
         motion: None,
     });
     m
@@ -181,8 +180,9 @@ fn on_incline(
         mu,
         INCLINE_END,
     );
-    m.effects.walls[0].static_friction = static_friction;
-    m.effects.walls[0].friction_decay = decay;
+    let friction = &mut m.effects.walls[0].friction;
+    friction.static_coefficient = static_friction.unwrap_or(mu);
+    friction.decay = decay;
     m.effects.body_force.as_mut().unwrap().amplitude = Some(
         VelocityRamp {
             duration: 2.0,
@@ -257,13 +257,13 @@ fn wall_friction_errors_name_the_wall() {
     // than a sliding one is braked.
     for static_friction in [0.1, f64::NAN] {
         let mut m = floor(0.5);
-        m.effects.walls[0].static_friction = Some(static_friction);
+        m.effects.walls[0].friction.static_coefficient = static_friction;
         assert_wall_error(m, "static", &format!("μ_s = {static_friction}"));
     }
     for decay in [-1.0, f64::NAN, f64::INFINITY] {
         let mut m = floor(0.5);
-        m.effects.walls[0].static_friction = Some(0.7);
-        m.effects.walls[0].friction_decay = Some(decay);
+        m.effects.walls[0].friction.static_coefficient = 0.7;
+        m.effects.walls[0].friction.decay = Some(decay);
         assert_wall_error(m, "decay", &format!("d_c = {decay}"));
     }
 }
