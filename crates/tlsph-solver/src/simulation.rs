@@ -1926,27 +1926,18 @@ fn build_effects<const D: usize>(
         let h = per_particle(&|b| b.smoothing_length);
         let c0 = per_particle(&|b| b.sound_speed0);
         let dx = per_particle(&|b| b.spacing);
+        let wall_error = |message: String| SetupError::InvalidConfig {
+            field: "wall",
+            message: format!("wall `{}`: {message}", wall.name),
+        };
         let coefficients = wall.friction;
-        coefficients
-            .check()
-            .map_err(|message| SetupError::InvalidConfig {
-                field: "wall",
-                message: format!("wall `{}`: {message}", wall.name),
-            })?;
+        coefficients.check().map_err(wall_error)?;
         if let Some(motion) = &wall.motion {
             if !motion.velocity.iter().all(|v| v.is_finite()) {
-                return Err(SetupError::InvalidConfig {
-                    field: "wall",
-                    message: format!("wall `{}` needs a finite velocity", wall.name),
-                });
+                return Err(wall_error("needs a finite velocity".into()));
             }
             if let Some(amplitude) = &motion.amplitude {
-                amplitude
-                    .validate()
-                    .map_err(|message| SetupError::InvalidConfig {
-                        field: "wall",
-                        message: format!("wall `{}`: {message}", wall.name),
-                    })?;
+                amplitude.validate().map_err(wall_error)?;
             }
         }
         let plane = (wall.point, wall.normal);
