@@ -564,7 +564,7 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
     if stress_update == StressUpdate::GreenLagrange {
         if let Some(b) = bodies.iter().find(|b| {
             let model = &materials[b.material].model;
-            model.has_plastic_strain() || matches!(model, MaterialModel::ElasticDamage(_))
+            model.has_plastic_strain() || model.softening_damage().is_some()
         }) {
             let span = sim
                 .stress_update
@@ -1468,7 +1468,9 @@ fn initial_stress<const D: usize>(
         return Err(ctx.error(&span, field, "components must be finite numbers".into()));
     }
     let state_stress = match &material.model {
-        MaterialModel::ElasticPlastic(m) => matches!(m.pressure, PressureModel::Eos(_)),
+        MaterialModel::ElasticPlastic(m) => {
+            matches!(m.pressure, PressureModel::Eos(_)) || m.damage.is_some()
+        }
         MaterialModel::ElasticDamage(_) => true,
         MaterialModel::LinearElastic(_) => false,
     };

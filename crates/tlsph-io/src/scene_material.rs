@@ -36,6 +36,7 @@ const MODELS: [(&str, &[&str]); 3] = [
             "min_pressure",
             "eos",
             "failure",
+            "damage",
         ],
     ),
     (
@@ -56,6 +57,7 @@ const MODELS: [(&str, &[&str]); 3] = [
             "min_pressure",
             "eos",
             "failure",
+            "damage",
         ],
     ),
 ];
@@ -253,6 +255,17 @@ pub(crate) fn material_model(
         None => None,
         Some(t) => Some(failure(ctx, t, field, &strength)?),
     };
+    let damage = match (&m.damage, &m.failure) {
+        (None, _) => None,
+        (Some(t), None) => Some(damage(ctx, t, field)?),
+        (Some(t), Some(_)) => {
+            return Err(ctx.error(
+                &t.span(),
+                &field("damage"),
+                "cannot be combined with `failure` on one material (not built yet): `damage` softens and fails a particle by its own law, `failure` fails it by a criterion; choose one".into(),
+            ))
+        }
+    };
     Ok(MaterialModel::ElasticPlastic(ElasticPlastic {
         elastic,
         strength,
@@ -260,6 +273,7 @@ pub(crate) fn material_model(
         min_pressure,
         thermal,
         failure,
+        damage,
     }))
 }
 

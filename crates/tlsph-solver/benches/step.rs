@@ -54,6 +54,7 @@ fn johnson_cook_steel() -> MaterialModel {
         min_pressure: None,
         thermal: None,
         failure: None,
+        damage: None,
     })
 }
 

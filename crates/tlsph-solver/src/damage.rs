@@ -1,12 +1,13 @@
-//! Constitutive update of damaged linear-elastic bodies (numerics.md §8.1, §9.1–9.3): the
-//! undamaged ("effective") Cauchy stress is integrated with the Jaumann rate, a damage law
-//! turns the kinematics into D, and the stress the body feels is the effective stress with its
-//! tensile principal part scaled by (1 − D). D = 1 marks the particle failed; the simulation
-//! then takes it out of every sum (`Bonds::remove_failed`).
+//! Softening damage (numerics.md §8.1, §9.1–9.3): a body integrates its undamaged
+//! ("effective") Cauchy stress as if nothing were damaged, a damage law turns the kinematics
+//! into D, and the stress the body feels is the effective stress with its tensile principal
+//! part scaled by (1 − D). D = 1 marks the particle failed; the simulation then takes it out of
+//! every sum (`Bonds::remove_failed`).
 //!
-//! The update is monomorphised per damage law (a [`Law`] type parameter), so the particle loop
-//! has no branch on the model; bodies without a damage model never reach this file and carry
-//! none of its state ([`DamageState::None`]).
+//! Two materials soften: damaged linear-elastic bodies, whose loop is here
+//! ([`update_damaged_elastic`]), and elastic–plastic bodies with a `damage` law, whose loop in
+//! `plasticity.rs` takes a [`Softening`] type parameter: [`Undamaged`] (no state, no work) or
+//! [`Softened`]. Bodies without a damage model carry none of this state ([`DamageState::None`]).
 
 use crate::model::{BulkViscosity, DamageModel, ElasticDamage, MaterialModel};
 use crate::particles::Particles;
@@ -29,23 +30,30 @@ const REMOVED: u8 = 2;
 pub(crate) enum DamageState {
     /// The body's material has no damage law: nothing stored, nothing run.
     None,
-    /// A damaged elastic body.
+    /// A damaged (softening) body.
     Damaged(Box<DamagedBody>),
 }
 
-/// State of a damaged elastic body.
+/// State of a softening body.
 #[derive(Debug, Clone)]
 pub(crate) struct DamagedBody {
-    /// Undamaged Cauchy stress σ_eff integrated with the Jaumann rate (numerics.md §8.1).
-    effective: Vec<Tensor3>,
-    /// History variable: κ = max ε_max (Peerlings) or the largest ε_eff reached (Grady–Kipp).
-    history: Vec<f64>,
-    /// Damage D ∈ [0, 1].
-    damage: Vec<f64>,
-    /// 0 intact, 1 failed in the last update, 2 failed and removed.
-    status: Vec<u8>,
+    /// One state per particle.
+    points: Vec<DamagePoint>,
     /// Grady–Kipp flaws of the body (empty for Peerlings).
     flaws: Flaws,
+}
+
+/// Damage state of one particle.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct DamagePoint {
+    /// Undamaged Cauchy stress σ_eff (numerics.md §8.1, §9.1).
+    effective: Tensor3,
+    /// History variable: κ = max ε_max (Peerlings) or the largest ε_eff reached (Grady–Kipp).
+    history: f64,
+    /// Damage D ∈ [0, 1].
+    damage: f64,
+    /// 0 intact, 1 failed in the last update, 2 failed and removed.
+    status: u8,
 }
 
 /// Flaw activation strains of every particle of a body in CSR form (numerics.md §9.2): the
@@ -58,14 +66,14 @@ struct Flaws {
 
 impl DamageState {
     /// State for the `volumes0.len()` particles of a body made of `model` (nothing unless the
-    /// material has a damage law). Grady–Kipp flaws are seeded here, once per body, from the
-    /// body's total reference measure Σ V0 and the declared seed (numerics.md §9.2).
+    /// material has a softening damage law). Grady–Kipp flaws are seeded here, once per body,
+    /// from the body's total reference measure Σ V0 and the declared seed (numerics.md §9.2).
     pub fn for_material(model: &MaterialModel, volumes0: &[f64]) -> Self {
-        let MaterialModel::ElasticDamage(m) = model else {
+        let Some(damage) = model.softening_damage() else {
             return DamageState::None;
         };
         let n = volumes0.len();
-        let flaws = match m.damage {
+        let flaws = match *damage {
             DamageModel::Peerlings(_) => Flaws::default(),
             DamageModel::GradyKipp { model, seed } => {
                 // Sequential sum in particle order: the same total for any thread count.
@@ -84,11 +92,14 @@ impl DamageState {
                 }
             }
         };
+        let intact = DamagePoint {
+            effective: Tensor3::zeros(),
+            history: 0.0,
+            damage: 0.0,
+            status: INTACT,
+        };
         DamageState::Damaged(Box::new(DamagedBody {
-            effective: vec![Tensor3::zeros(); n],
-            history: vec![0.0; n],
-            damage: vec![0.0; n],
-            status: vec![INTACT; n],
+            points: vec![intact; n],
             flaws,
         }))
     }
@@ -97,11 +108,14 @@ impl DamageState {
     pub fn damage(&self, k: usize) -> Option<f64> {
         match self {
             DamageState::None => None,
-            DamageState::Damaged(b) => Some(if b.status[k] != INTACT {
-                1.0
-            } else {
-                b.damage[k]
-            }),
+            DamageState::Damaged(b) => {
+                let point = &b.points[k];
+                Some(if point.status != INTACT {
+                    1.0
+                } else {
+                    point.damage
+                })
+            }
         }
     }
 
@@ -109,8 +123,8 @@ impl DamageState {
     /// left without neighbours); nothing for bodies without damage.
     pub fn mark_removed(&mut self, k: usize) {
         if let DamageState::Damaged(b) = self {
-            b.status[k] = REMOVED;
-            b.damage[k] = 1.0;
+            b.points[k].status = REMOVED;
+            b.points[k].damage = 1.0;
         }
     }
 
@@ -121,9 +135,9 @@ impl DamageState {
             DamageState::None => Vec::new(),
             DamageState::Damaged(b) => {
                 let mut out = Vec::new();
-                for (k, s) in b.status.iter_mut().enumerate() {
-                    if *s == FAILED_NOW {
-                        *s = REMOVED;
+                for (k, point) in b.points.iter_mut().enumerate() {
+                    if point.status == FAILED_NOW {
+                        point.status = REMOVED;
                         out.push(k);
                     }
                 }
@@ -135,7 +149,7 @@ impl DamageState {
 
 /// A damage law as the particle loop sees it: the new D of local particle `k` from its
 /// deformation gradient F^n, its effective stress σ_eff^n, its previous damage and history.
-trait Law: Sync {
+pub(crate) trait Law: Sync {
     fn advance(
         &self,
         k: usize,
@@ -167,7 +181,7 @@ impl Law for PeerlingsSoftening {
 }
 
 /// Grady–Kipp with everything but the point fixed for the body (numerics.md §9.2).
-struct GradyKippBody<'a> {
+pub(crate) struct GradyKippBody<'a> {
     model: GradyKipp,
     flaws: &'a Flaws,
     youngs_modulus: f64,
@@ -175,6 +189,26 @@ struct GradyKippBody<'a> {
     crack_speed: f64,
     /// R_s = ½Δx \[m\].
     particle_radius: f64,
+}
+
+impl<'a> GradyKippBody<'a> {
+    /// The law for a body of Young's modulus `youngs_modulus`, reference sound speed
+    /// `sound_speed0` and spacing `spacing` (c_g = 0.4 c_l, R_s = ½Δx).
+    fn new(
+        model: GradyKipp,
+        flaws: &'a Flaws,
+        youngs_modulus: f64,
+        sound_speed0: f64,
+        spacing: f64,
+    ) -> Self {
+        GradyKippBody {
+            model,
+            flaws,
+            youngs_modulus,
+            crack_speed: BENZ_ASPHAUG_CRACK_SPEED_RATIO * sound_speed0,
+            particle_radius: 0.5 * spacing,
+        }
+    }
 }
 
 impl Law for GradyKippBody<'_> {
@@ -207,6 +241,148 @@ impl Law for GradyKippBody<'_> {
     }
 }
 
+/// Either law behind one type, for the elastic–plastic loop: one predictable branch per
+/// damaged particle instead of a second copy of that (already many-fold monomorphised) loop.
+pub(crate) enum AnyLaw<'a> {
+    /// Peerlings linear softening.
+    Peerlings(PeerlingsSoftening),
+    /// Grady–Kipp flaws.
+    GradyKipp(GradyKippBody<'a>),
+}
+
+impl Law for AnyLaw<'_> {
+    #[inline]
+    fn advance(
+        &self,
+        k: usize,
+        f: &Tensor3,
+        effective: &Tensor3,
+        damage: f64,
+        history: &mut f64,
+        dt: f64,
+    ) -> f64 {
+        match self {
+            AnyLaw::Peerlings(law) => law.advance(k, f, effective, damage, history, dt),
+            AnyLaw::GradyKipp(law) => law.advance(k, f, effective, damage, history, dt),
+        }
+    }
+}
+
+/// What a constitutive loop does with the undamaged stress it has just integrated
+/// (numerics.md §9.1): keep it ([`Undamaged`]) or soften it by a damage law ([`Softened`]).
+/// A type parameter of the loop, so an undamaged body's loop has neither state nor branch for
+/// damage.
+pub(crate) trait Softening: Sync {
+    /// Per-particle state: `()` when undamaged.
+    type Point: Send;
+    /// The undamaged stress at the start of the step: σ_eff^{n−1}, or the stored σ^{n−1}.
+    fn start(point: &Self::Point, stress: &Tensor3) -> Tensor3;
+    /// Whether the particle failed in an earlier update (it carries no stress any more).
+    fn failed_before(point: &Self::Point) -> bool;
+    /// Whether the particle failed in this update.
+    fn fails_now(point: &Self::Point) -> bool;
+    /// Takes the new undamaged stress σ_eff^n of local particle `k` (deformation gradient
+    /// `f`) and returns the stress the body feels: σ_eff − D Σ_{σi > 0} σi nᵢ⊗nᵢ, or zero when
+    /// D reaches 1 (the point is then flagged as failed now, numerics.md §9.1, §9.3).
+    fn soften(
+        &self,
+        k: usize,
+        point: &mut Self::Point,
+        f: &Tensor3,
+        effective: Tensor3,
+        dt: f64,
+    ) -> Tensor3;
+}
+
+/// No damage: the integrated stress is the stress.
+pub(crate) struct Undamaged;
+
+impl Softening for Undamaged {
+    type Point = ();
+    #[inline]
+    fn start(_: &(), stress: &Tensor3) -> Tensor3 {
+        *stress
+    }
+    #[inline]
+    fn failed_before(_: &()) -> bool {
+        false
+    }
+    #[inline]
+    fn fails_now(_: &()) -> bool {
+        false
+    }
+    #[inline]
+    fn soften(&self, _: usize, _: &mut (), _: &Tensor3, effective: Tensor3, _: f64) -> Tensor3 {
+        effective
+    }
+}
+
+/// Softening by the damage law `L`.
+pub(crate) struct Softened<L: Law> {
+    law: L,
+}
+
+impl<L: Law> Softening for Softened<L> {
+    type Point = DamagePoint;
+    #[inline]
+    fn start(point: &DamagePoint, _: &Tensor3) -> Tensor3 {
+        point.effective
+    }
+    #[inline]
+    fn failed_before(point: &DamagePoint) -> bool {
+        point.status != INTACT
+    }
+    #[inline]
+    fn fails_now(point: &DamagePoint) -> bool {
+        point.status == FAILED_NOW
+    }
+    #[inline]
+    fn soften(
+        &self,
+        k: usize,
+        point: &mut DamagePoint,
+        f: &Tensor3,
+        effective: Tensor3,
+        dt: f64,
+    ) -> Tensor3 {
+        point.effective = effective;
+        point.damage =
+            self.law
+                .advance(k, f, &point.effective, point.damage, &mut point.history, dt);
+        if point.damage >= 1.0 {
+            point.status = FAILED_NOW;
+            point.damage = 1.0;
+            Tensor3::zeros()
+        } else {
+            degrade_tensile_part(&point.effective, point.damage)
+        }
+    }
+}
+
+/// The softening of a damaged elastic–plastic body and its particles' states, for the loop in
+/// `plasticity.rs`. `youngs_modulus`, `sound_speed0` and `spacing` are the body's E, c_0 and
+/// Δx (Grady–Kipp's ε_eff = σ1⁺/E, c_g and R_s).
+pub(crate) fn softened_points<'a>(
+    model: &DamageModel,
+    body: &'a mut DamagedBody,
+    youngs_modulus: f64,
+    sound_speed0: f64,
+    spacing: f64,
+) -> (Softened<AnyLaw<'a>>, &'a mut [DamagePoint]) {
+    let DamagedBody { points, flaws } = body;
+    let law = match *model {
+        DamageModel::Peerlings(law) => AnyLaw::Peerlings(law),
+        DamageModel::GradyKipp { model, .. } => AnyLaw::GradyKipp(GradyKippBody::new(
+            model,
+            flaws,
+            youngs_modulus,
+            sound_speed0,
+            spacing,
+        )),
+    };
+    (Softened { law }, points)
+}
+
 /// Updates σ, P, J, e and the damage state of one damaged elastic body (numerics.md §9).
 /// `spacing` is the body's Δx (R_s = ½Δx of Grady–Kipp).
 pub(crate) fn update_damaged_elastic<const D: usize, R: ReferenceJacobian + ?Sized>(
@@ -220,39 +396,48 @@ pub(crate) fn update_damaged_elastic<const D: usize, R: ReferenceJacobian + ?Siz
     let DamageState::Damaged(body) = state else {
         unreachable!("damaged elastic bodies always carry a damage state")
     };
+    let DamagedBody { points, flaws } = &mut **body;
     let elastic = &material.elastic;
     match (&material.damage, viscosity) {
-        (DamageModel::Peerlings(law), None) => update(elastic, law, step, &NoViscosity, p, body),
-        (DamageModel::Peerlings(law), Some(v)) => update(elastic, law, step, &v, p, body),
+        (DamageModel::Peerlings(law), None) => update(
+            elastic,
+            &Softened { law: *law },
+            step,
+            &NoViscosity,
+            p,
+            points,
+        ),
+        (DamageModel::Peerlings(law), Some(v)) => {
+            update(elastic, &Softened { law: *law }, step, &v, p, points)
+        }
         (DamageModel::GradyKipp { model, .. }, v) => {
-            let flaws = std::mem::take(&mut body.flaws);
-            let law = GradyKippBody {
-                model: *model,
-                flaws: &flaws,
-                youngs_modulus: elastic.youngs_modulus(),
-                crack_speed: BENZ_ASPHAUG_CRACK_SPEED_RATIO * step.sound_speed0,
-                particle_radius: 0.5 * spacing,
-            };
+            let law = GradyKippBody::new(
+                *model,
+                flaws,
+                elastic.youngs_modulus(),
+                step.sound_speed0,
+                spacing,
+            );
+            let softening = Softened { law };
             match v {
-                None => update(elastic, &law, step, &NoViscosity, p, body),
-                Some(v) => update(elastic, &law, step, &v, p, body),
+                None => update(elastic, &softening, step, &NoViscosity, p, points),
+                Some(v) => update(elastic, &softening, step, &v, p, points),
             }
-            body.flaws = flaws;
         }
     }
 }
 
-/// The per-particle loop: σ_eff^n = Jaumann update of σ_eff^{n−1} (R 5.82–5.86), D^n from the
-/// law, σ^n = σ_eff − D Σ_{σi > 0} σi nᵢ⊗nᵢ (numerics.md §9.1), e += Δt σ^{n−½}:D/ρ^{n−½}
-/// with the damaged stress (so the energy damage releases stays in e), P = σ cof F. A particle
-/// reaching D = 1 fails: zero stress from now on (numerics.md §9.3).
+/// The per-particle loop: σ_eff^n = Jaumann update of σ_eff^{n−1} (R 5.82–5.86), then the
+/// softening (D^n from the law, σ^n = σ_eff − D Σ_{σi > 0} σi nᵢ⊗nᵢ, numerics.md §9.1),
+/// e += Δt σ^{n−½}:D/ρ^{n−½} with the damaged stress (so the energy damage releases stays in
+/// e), P = σ cof F. A particle reaching D = 1 fails: zero stress from now on (numerics.md §9.3).
 fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
     elastic: &LinearElastic,
-    law: &L,
+    softening: &Softened<L>,
     step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
-    body: &mut DamagedBody,
+    points: &mut [DamagePoint],
 ) {
     let (c0, length, dt, rho0) = (
         step.sound_speed0,
@@ -268,58 +453,46 @@ fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
         .zip(p.pk1[r.clone()].par_iter_mut())
         .zip(p.jacobian[r.clone()].par_iter_mut())
         .zip(p.internal_energy[r].par_iter_mut())
-        .zip(body.effective.par_iter_mut())
-        .zip(body.history.par_iter_mut())
-        .zip(body.damage.par_iter_mut())
-        .zip(body.status.par_iter_mut())
+        .zip(points.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(
-            |(k, (((((((sigma, pk1), jac), energy), effective), history), damage), status))| {
-                if *status != INTACT {
-                    // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
-                    *sigma = Tensor3::zeros();
-                    *pk1 = Tensor::<D>::zeros();
-                    *jac = 1.0;
-                    return;
-                }
-                let f = embed_with_identity(&f_all[k]);
-                let f_dot = embed_with_zeros(&f_dot_all[k]);
-                let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
-                *effective = elastic.jaumann_update(effective, &d, &w, dt);
-                *damage = law.advance(k, &f, effective, *damage, history, dt);
-                let sigma_new = if *damage >= 1.0 {
-                    *status = FAILED_NOW;
-                    *damage = 1.0;
-                    Tensor3::zeros()
-                } else {
-                    degrade_tensile_part(effective, *damage)
-                };
-                // cof F relative to the reference gives P relative to it; J is the total one.
-                let (cofactor, j_ref) = cofactor_and_determinant(&f);
-                let j0 = step.reference_jacobian.at(k);
-                let (j, j_half) = (j_ref * j0, j_half * j0);
-                // Artificial pressure on the force-driving stress only (numerics.md §10.2). A
-                // particle failing now leaves this step's force sums, so neither its stress nor
-                // q enters its last energy increment (they would not pair with any force work).
-                let q = if *status == FAILED_NOW {
-                    0.0
-                } else {
-                    viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length)
-                };
-                if step.book_energy {
-                    *energy += dt * j_half / rho0
-                        * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                            .component_mul(&d)
-                            .sum();
-                }
-                *sigma = sigma_new;
-                *jac = j;
-                *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
-                    project(&((sigma_new - Tensor3::identity() * q) * cofactor))
-                } else {
-                    Tensor::<D>::from_element(f64::NAN)
-                };
-            },
-        );
+        .for_each(|(k, ((((sigma, pk1), jac), energy), point))| {
+            if point.status != INTACT {
+                // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
+                *sigma = Tensor3::zeros();
+                *pk1 = Tensor::<D>::zeros();
+                *jac = 1.0;
+                return;
+            }
+            let f = embed_with_identity(&f_all[k]);
+            let f_dot = embed_with_zeros(&f_dot_all[k]);
+            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
+            let effective = elastic.jaumann_update(&point.effective, &d, &w, dt);
+            let sigma_new = softening.soften(k, point, &f, effective, dt);
+            // cof F relative to the reference gives P relative to it; J is the total one.
+            let (cofactor, j_ref) = cofactor_and_determinant(&f);
+            let j0 = step.reference_jacobian.at(k);
+            let (j, j_half) = (j_ref * j0, j_half * j0);
+            // Artificial pressure on the force-driving stress only (numerics.md §10.2). A
+            // particle failing now leaves this step's force sums, so neither its stress nor
+            // q enters its last energy increment (they would not pair with any force work).
+            let q = if point.status == FAILED_NOW {
+                0.0
+            } else {
+                viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length)
+            };
+            if step.book_energy {
+                *energy += dt * j_half / rho0
+                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
+                        .component_mul(&d)
+                        .sum();
+            }
+            *sigma = sigma_new;
+            *jac = j;
+            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
+                project(&((sigma_new - Tensor3::identity() * q) * cofactor))
+            } else {
+                Tensor::<D>::from_element(f64::NAN)
+            };
+        });
 }

@@ -91,7 +91,8 @@ pub enum MaterialModel {
     ElasticDamage(ElasticDamage),
 }
 
-/// Damage law of an [`ElasticDamage`] material (numerics.md §9.1–9.2).
+/// Softening damage law of an [`ElasticDamage`] material, or of an [`ElasticPlastic`] one
+/// (numerics.md §9.1–9.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DamageModel {
     /// Peerlings linear softening D(κ), κ = max over history of the largest principal Hencky
@@ -197,6 +198,11 @@ pub struct ElasticPlastic {
     pub thermal: Option<Thermal>,
     /// Failure criterion; absent: particles never fail.
     pub failure: Option<FailureModel>,
+    /// Softening damage (numerics.md §9.1–9.3 on the elastic–plastic stress): the stress the
+    /// update above produces is the undamaged ("effective") one, and the body feels it with its
+    /// tensile principal part scaled by (1 − D); D = 1 fails the particle. Absent: no softening.
+    /// Not together with `failure` (set-up refuses both).
+    pub damage: Option<DamageModel>,
 }
 
 impl ElasticPlastic {
@@ -253,8 +259,18 @@ impl MaterialModel {
     pub fn has_damage(&self) -> bool {
         match self {
             MaterialModel::LinearElastic(_) => false,
-            MaterialModel::ElasticPlastic(m) => m.failure.is_some(),
+            MaterialModel::ElasticPlastic(m) => m.failure.is_some() || m.damage.is_some(),
             MaterialModel::ElasticDamage(_) => true,
+        }
+    }
+
+    /// The softening damage law of the material (numerics.md §9.1–9.2), elastic or
+    /// elastic–plastic; `None` without one.
+    pub fn softening_damage(&self) -> Option<&DamageModel> {
+        match self {
+            MaterialModel::LinearElastic(_) => None,
+            MaterialModel::ElasticPlastic(m) => m.damage.as_ref(),
+            MaterialModel::ElasticDamage(m) => Some(&m.damage),
         }
     }
 

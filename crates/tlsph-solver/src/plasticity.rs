@@ -1,8 +1,10 @@
 //! Constitutive update of elastic–plastic (hydrocode) materials for one body: Jaumann-rate
 //! elastic predictor of the deviator, pressure from the bulk modulus or an EOS, a return map,
-//! optional adiabatic heating. Monomorphised per (strength, pressure, state) combination, so
-//! the per-particle loop has no branch on the model (numerics.md §8.1, §8.3–8.5, §8.9).
+//! optional adiabatic heating, optional softening damage. Monomorphised per (strength,
+//! pressure, state, softening) combination, so the per-particle loop has no branch on the
+//! model (numerics.md §8.1, §8.3–8.5, §8.9, §9.1).
 
+use crate::damage::{softened_points, DamageState, Softening, Undamaged};
 use crate::model::{
     BulkViscosity, ElasticPlastic, FailureModel, PressureModel, StrengthModel, Thermal,
 };
@@ -309,13 +311,24 @@ eos_pressure!(LinearEos);
 eos_pressure!(PolynomialEos);
 eos_pressure!(MieGruneisen);
 
-/// Updates σ, P, J, e and the plastic state of one body made of `material`.
+/// The per-particle states of one elastic–plastic body: its plastic state, and its damage
+/// state with the body's spacing Δx (Grady–Kipp's R_s = ½Δx).
+pub(crate) struct PlasticBody<'a> {
+    /// ε̄p, T, failure.
+    pub plastic: &'a mut PlasticState,
+    /// Softening damage (`DamageState::None` without a `damage` law).
+    pub damage: &'a mut DamageState,
+    /// Δx of the body.
+    pub spacing: f64,
+}
+
+/// Updates σ, P, J, e and the plastic and damage states of one body made of `material`.
 pub(crate) fn update_elastic_plastic<const D: usize, R: ReferenceJacobian + ?Sized>(
     material: &ElasticPlastic,
     step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
-    state: &mut PlasticState,
+    state: PlasticBody<'_>,
 ) {
     let v = viscosity;
     match &material.pressure {
@@ -343,7 +356,7 @@ fn with_strength<const D: usize, P: Pressure, R: ReferenceJacobian + ?Sized>(
     step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
-    state: &mut PlasticState,
+    state: PlasticBody<'_>,
 ) {
     match material.strength {
         StrengthModel::VonMises(vm) => {
@@ -369,7 +382,7 @@ fn with_viscosity<const D: usize, P: Pressure, S: Strength, R: ReferenceJacobian
     step: &ConstitutiveStep<R>,
     viscosity: Option<BulkViscosity>,
     p: &mut Particles<D>,
-    state: &mut PlasticState,
+    state: PlasticBody<'_>,
 ) {
     match viscosity {
         None => with_state(material, pressure, strength, step, &NoViscosity, p, state),
@@ -377,6 +390,8 @@ fn with_viscosity<const D: usize, P: Pressure, S: Strength, R: ReferenceJacobian
     }
 }
 
+/// Picks the loop for the body's point state and softening. A `damage` law excludes a
+/// `failure` criterion (refused at set-up), so only the states without failure soften.
 fn with_state<
     const D: usize,
     P: Pressure,
@@ -390,44 +405,84 @@ fn with_state<
     step: &ConstitutiveStep<R>,
     viscosity: &V,
     p: &mut Particles<D>,
-    state: &mut PlasticState,
+    state: PlasticBody<'_>,
 ) {
-    match state {
-        PlasticState::Strain(v) => {
-            update::<D, P, S, V, [f64; 1], R>(material, pressure, strength, step, viscosity, p, v)
+    let laws = Laws {
+        material,
+        pressure,
+        strength,
+        step,
+        viscosity,
+    };
+    // Zero-sized: no allocation, just the count the loop's zip needs.
+    let mut none = vec![(); step.range.len()];
+    match (state.plastic, state.damage, &material.damage) {
+        (PlasticState::Strain(v), DamageState::None, _) => {
+            update(&laws, &Undamaged, p, v, &mut none)
         }
-        PlasticState::StrainTemperature(v) => {
-            update::<D, P, S, V, [f64; 2], R>(material, pressure, strength, step, viscosity, p, v)
+        (PlasticState::StrainTemperature(v), DamageState::None, _) => {
+            update(&laws, &Undamaged, p, v, &mut none)
         }
-        PlasticState::StrainDamage(v) => {
-            update::<D, P, S, V, [f64; 3], R>(material, pressure, strength, step, viscosity, p, v)
+        (PlasticState::StrainDamage(v), DamageState::None, _) => {
+            update(&laws, &Undamaged, p, v, &mut none)
         }
-        PlasticState::StrainTemperatureDamage(v) => {
-            update::<D, P, S, V, [f64; 4], R>(material, pressure, strength, step, viscosity, p, v)
+        (PlasticState::StrainTemperatureDamage(v), DamageState::None, _) => {
+            update(&laws, &Undamaged, p, v, &mut none)
         }
-        PlasticState::None => unreachable!("elastic-plastic bodies always carry a plastic state"),
+        (PlasticState::Strain(v), DamageState::Damaged(body), Some(model)) => {
+            let e = material.elastic.youngs_modulus();
+            let (softening, points) =
+                softened_points(model, body, e, step.sound_speed0, state.spacing);
+            update(&laws, &softening, p, v, points)
+        }
+        (PlasticState::StrainTemperature(v), DamageState::Damaged(body), Some(model)) => {
+            let e = material.elastic.youngs_modulus();
+            let (softening, points) =
+                softened_points(model, body, e, step.sound_speed0, state.spacing);
+            update(&laws, &softening, p, v, points)
+        }
+        _ => unreachable!(
+            "an elastic-plastic body carries a plastic state, and damage only without failure"
+        ),
     }
+}
+
+/// The body's laws, fixed for one update.
+struct Laws<'a, P, S, V, R: ReferenceJacobian + ?Sized> {
+    material: &'a ElasticPlastic,
+    pressure: &'a P,
+    strength: &'a S,
+    step: &'a ConstitutiveStep<'a, R>,
+    viscosity: &'a V,
 }
 
 /// The per-particle loop (R 5.82–5.86 with a return map):
 /// s* = Q s Qᵀ + 2G Δt D′ (Hughes–Winget Q), p from the pressure law (then the cutoff),
-/// s = return_map(s*), σ = −p I + s, e += Δt σ^{n−½}:D/ρ^{n−½}, ε̄p += Δε̄p, T += σ̄Δε̄p/(ρ c_v).
+/// s = return_map(s*), σ_eff = −p I + s, ε̄p += Δε̄p, T += σ̄Δε̄p/(ρ c_v), σ = the softened
+/// σ_eff (numerics.md §9.1; σ_eff itself without damage), e += Δt σ^{n−½}:D/ρ^{n−½}.
+/// The update starts from σ_eff^{n−1}, so damage never feeds back into the plastic flow.
 fn update<
     const D: usize,
     P: Pressure,
     S: Strength,
     V: Viscosity,
     T: PointState,
+    X: Softening,
     R: ReferenceJacobian + ?Sized,
 >(
-    material: &ElasticPlastic,
-    pressure_law: &P,
-    strength: &S,
-    step: &ConstitutiveStep<R>,
-    viscosity: &V,
+    laws: &Laws<'_, P, S, V, R>,
+    softening: &X,
     p: &mut Particles<D>,
     points: &mut [T],
+    soft: &mut [X::Point],
 ) {
+    let Laws {
+        material,
+        pressure: pressure_law,
+        strength,
+        step,
+        viscosity,
+    } = *laws;
     let (c0, length) = (step.sound_speed0, step.smoothing_length);
     let dt = step.dt;
     let rho0 = step.density0;
@@ -450,11 +505,12 @@ fn update<
         .zip(p.jacobian[r.clone()].par_iter_mut())
         .zip(p.internal_energy[r].par_iter_mut())
         .zip(points.par_iter_mut())
+        .zip(soft.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(k, ((((sigma, pk1), jac), energy), point))| {
+        .for_each(|(k, (((((sigma, pk1), jac), energy), point), soft))| {
             let f = embed_with_identity(&f_all[k]);
-            if T::HAS_FAILURE && point.status() > 0.0 {
+            if (T::HAS_FAILURE && point.status() > 0.0) || X::failed_before(soft) {
                 // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
                 *sigma = Tensor3::zeros();
                 *pk1 = Tensor::<D>::zeros();
@@ -468,8 +524,9 @@ fn update<
             let j0 = step.reference_jacobian.at(k);
             let (j, j_half) = (j_ref * j0, j_half * j0);
             // Elastic predictor of the deviator with an exactly orthogonal rotation.
-            let s_old = deviator(sigma);
-            let p_old = -sigma.trace() / 3.0;
+            let start = X::start(soft, sigma);
+            let s_old = deviator(&start);
+            let p_old = -start.trace() / 3.0;
             let half = w * (0.5 * dt);
             let q = match (Tensor3::identity() - half).try_inverse() {
                 Some(inv) => inv * (Tensor3::identity() + half),
@@ -514,6 +571,11 @@ fn update<
                 // forces at t^n).
                 point.fail();
                 sigma_new = Tensor3::zeros();
+                q = 0.0;
+            }
+            sigma_new = softening.soften(k, soft, &f, sigma_new, dt);
+            if X::fails_now(soft) {
+                // As above: the particle leaves this step's force sums.
                 q = 0.0;
             }
             if step.book_energy {

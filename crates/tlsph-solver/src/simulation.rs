@@ -13,7 +13,7 @@ use crate::fields::ParticleField;
 use crate::ghosts::{check_planes, reflections, Ghosts};
 use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
 use crate::particles::Particles;
-use crate::plasticity::{update_elastic_plastic, PlasticState};
+use crate::plasticity::{update_elastic_plastic, PlasticBody, PlasticState};
 use crate::prescribed::{Drivers, PrescribedSet};
 use crate::reference::ReferenceState;
 use crate::stability::NeighbourDistances;
@@ -288,6 +288,17 @@ impl<const D: usize> Simulation<D> {
                 });
             }
         }
+        if let Some(m) = model.materials.iter().find(|m| {
+            matches!(m.model, MaterialModel::ElasticPlastic(p) if p.failure.is_some() && p.damage.is_some())
+        }) {
+            return Err(SetupError::InvalidConfig {
+                field: "damage",
+                message: format!(
+                    "material `{}` declares both a failure criterion and a softening damage law; one material takes one of them (not built: both on one material)",
+                    m.name
+                ),
+            });
+        }
         let plastic = bodies
             .iter()
             .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
@@ -305,7 +316,7 @@ impl<const D: usize> Simulation<D> {
             if let Some(m) = model
                 .materials
                 .iter()
-                .find(|m| matches!(m.model, MaterialModel::ElasticDamage(_)))
+                .find(|m| m.model.softening_damage().is_some())
             {
                 return Err(SetupError::InvalidConfig {
                     field: "stress_update",
@@ -1325,7 +1336,7 @@ impl<const D: usize> Simulation<D> {
         let material = &self.materials[info.material];
         let stress_from_state = self.config.stress_update == StressUpdate::GreenLagrange
             || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)))
-            || matches!(material, MaterialModel::ElasticDamage(_));
+            || material.softening_damage().is_some();
         if stress_from_state {
             return refuse(format!(
                 "body `{}`: its stress is a function of the current state (Green–Lagrange path, an equation of state, or a damage model's effective stress), so an initial stress would be lost",
@@ -1680,9 +1691,17 @@ impl BodyUpdate<'_> {
                 update_green_lagrange(m, step, particles)
             }
             // Rejected at setup for the Green–Lagrange path.
-            (MaterialModel::ElasticPlastic(m), _) => {
-                update_elastic_plastic(m, step, self.viscosity, particles, self.plastic)
-            }
+            (MaterialModel::ElasticPlastic(m), _) => update_elastic_plastic(
+                m,
+                step,
+                self.viscosity,
+                particles,
+                PlasticBody {
+                    plastic: self.plastic,
+                    damage: self.damage,
+                    spacing: self.spacing,
+                },
+            ),
             // Rejected at setup for the Green–Lagrange path.
             (MaterialModel::ElasticDamage(m), _) => update_damaged_elastic(
                 m,
@@ -2649,6 +2668,7 @@ mod time_step_tests {
             failure: Some(FailureModel::MaxPlasticStrain(
                 MaxPlasticStrainFailure::new(10.0).unwrap(),
             )),
+            damage: None,
         };
         let positions: Vec<Vector<1>> = (0..n)
             .map(|k| Vector::<1>::new((k as f64 + 0.5) * dx))

@@ -1,5 +1,5 @@
-//! `damage = { ... }` on linear-elastic materials (numerics.md §9.1–9.2): parsing, the default
-//! flaw seed, and located errors naming the field.
+//! `damage = { ... }` on linear-elastic and elastic–plastic materials (numerics.md §9.1–9.2):
+//! parsing, the default flaw seed, and located errors naming the field.
 
 use super::{error_of, line_of};
 use tlsph_io::{parse_scene, DimensionModel};
@@ -170,19 +170,91 @@ fn damage_errors_name_the_field_and_line() {
     }
 }
 
+/// The first material of [`DAMAGED`] made elastic-plastic (σ_y = 0.02) with `extra` lines.
+fn plastic_bar(extra: &str) -> String {
+    DAMAGED.replacen(
+        "model = \"linear-elastic\"",
+        &format!("model = \"elastic-plastic\"\nyield_stress = 0.02\n{extra}"),
+        1,
+    )
+}
+
+#[test]
+fn elastic_plastic_and_johnson_cook_materials_take_damage() {
+    let scene = parse_scene(&plastic_bar(""), "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticPlastic(bar) = &model.materials[0].model else {
+        panic!("bar is elastic-plastic")
+    };
+    assert!(bar.failure.is_none());
+    let Some(DamageModel::Peerlings(p)) = bar.damage else {
+        panic!("Peerlings on the plastic bar")
+    };
+    assert_eq!((p.kappa0(), p.kappa_c()), (0.001, 0.01));
+    assert!(model.materials[0].model.has_damage());
+    // Johnson–Cook strength with Grady–Kipp flaws.
+    let text = DAMAGED.replacen(
+        "model = \"linear-elastic\"\ndensity = 1.0\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\ndamage = { model = \"grady-kipp\"",
+        "model = \"johnson-cook\"\ndensity = 1.0\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\na = 0.01\nb = 0.02\nn = 0.3\nc = 0.0\nm = 1.0\nreference_strain_rate = 1.0\nroom_temperature = 293.0\nmelt_temperature = 1000.0\ndamage = { model = \"grady-kipp\"",
+        1,
+    );
+    assert_ne!(text, DAMAGED);
+    let scene = parse_scene(&text, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticPlastic(plate) = &model.materials[1].model else {
+        panic!("plate is Johnson–Cook")
+    };
+    assert!(matches!(
+        plate.damage,
+        Some(DamageModel::GradyKipp { seed: 42, .. })
+    ));
+    // Without `damage` nothing of it exists.
+    let plain = plastic_bar("").replace(
+        "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }",
+        "",
+    );
+    let plain = plain.replace("fields = [\"damage\", ", "fields = [");
+    let scene = parse_scene(&plain, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticPlastic(bar) = &model.materials[0].model else {
+        panic!("bar is elastic-plastic")
+    };
+    assert!(bar.damage.is_none() && !model.materials[0].model.has_damage());
+}
+
 #[test]
 fn damage_is_rejected_where_it_cannot_act() {
-    // On an elastic-plastic material (not supported yet): a "not a parameter" error.
-    let text = DAMAGED.replacen(
-        "model = \"linear-elastic\"",
-        "model = \"elastic-plastic\"\nyield_stress = 0.02",
+    // Together with a failure criterion on one material (not built).
+    let failure = "failure = { model = \"max-plastic-strain\", limit = 0.1 }";
+    let text = plastic_bar(failure);
+    let err = error_of(&text);
+    assert_eq!(err.field, "material[bar].damage");
+    assert!(
+        err.message.contains("cannot be combined with `failure`"),
+        "{err}"
+    );
+    assert_eq!(
+        err.line,
+        Some(line_of(
+            &text,
+            "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }"
+        ))
+    );
+    // With an initial stress (the effective stress starts at zero, so it would be lost).
+    let text = plastic_bar("").replacen(
+        "spacing = 1.0\n",
+        "spacing = 1.0\ninitial_stress = { xx = 0.001 }\n",
         1,
     );
     let err = error_of(&text);
-    assert_eq!(err.field, "material[bar].damage");
-    assert!(err
-        .message
-        .contains("not a parameter of model `elastic-plastic`"));
+    assert_eq!(err.field, "body[bar].initial_stress", "{err}");
+    assert!(err.message.contains("damage model"), "{err}");
     // With the Green–Lagrange update (the damaged stress is the Jaumann-rate one).
     let text = DAMAGED.replace(
         "kernel = \"cubic-spline\"",

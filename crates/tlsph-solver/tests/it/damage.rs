@@ -1,5 +1,5 @@
-//! Damaged elastic bodies (numerics.md §9.1–9.3): the solver's Peerlings and Grady–Kipp
-//! wiring against the laws on homogeneous patches driven through a prescribed F(t), the
+//! Damaged elastic and elastic–plastic bodies (numerics.md §9.1–9.3): the solver's Peerlings
+//! and Grady–Kipp wiring against the laws on homogeneous patches driven through a prescribed F(t), the
 //! failure path, and determinism.
 //!
 //! Driving: with corrected gradients every particle of an affinely displaced patch sees the
@@ -9,11 +9,11 @@
 //! ε = 0.012 used below, so 1e-12 is a real check of the law, not of the time integration.
 
 use super::{lattice, model, Setup};
-use tlsph_materials::{GradyKipp, LinearElastic, PeerlingsSoftening};
+use tlsph_materials::{GradyKipp, LinearElastic, PeerlingsSoftening, VonMisesPlasticity};
 use tlsph_math::Vector;
 use tlsph_solver::{
-    DamageModel, ElasticDamage, MaterialModel, Model, ParticleField, SetupError, Simulation,
-    StressUpdate,
+    DamageModel, ElasticDamage, ElasticPlastic, MaterialModel, Model, ParticleField, PressureModel,
+    SetupError, Simulation, StrengthModel, StressUpdate,
 };
 
 const KAPPA0: f64 = 0.001;
@@ -30,11 +30,30 @@ fn peerlings_uniaxial(e: f64, strain: f64) -> f64 {
     }
 }
 
+/// After a 3000-step drive to ε = 0.012 > κc: both branches of the law were really visited
+/// (`softening` steps with 0 < D < 1, `failed` steps after failure) and every particle failed.
+fn softened_then_failed(sim: &Simulation<1>, softening: usize, failed: usize) {
+    assert!(softening > 2000, "{softening} softening steps");
+    assert!(failed > 100, "{failed} steps after failure");
+    assert_eq!(sim.failed_particles(), sim.positions0().len());
+}
+
 fn damaged<const D: usize>(
     positions: Vec<Vector<D>>,
     dx: f64,
     elastic: LinearElastic,
     damage: DamageModel,
+    end_time: f64,
+) -> Model<D> {
+    let material = MaterialModel::ElasticDamage(ElasticDamage { elastic, damage });
+    with_material(positions, dx, material, end_time)
+}
+
+/// A body of `material` at rest on `positions`.
+fn with_material<const D: usize>(
+    positions: Vec<Vector<D>>,
+    dx: f64,
+    material: MaterialModel,
     end_time: f64,
 ) -> Model<D> {
     let mut m = model(
@@ -46,7 +65,7 @@ fn damaged<const D: usize>(
             ..Setup::default()
         },
     );
-    m.materials[0].model = MaterialModel::ElasticDamage(ElasticDamage { elastic, damage });
+    m.materials[0].model = material;
     m
 }
 
@@ -114,10 +133,7 @@ fn peerlings_patch_follows_the_uniaxial_law_through_the_solver() {
             assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
         }
     }
-    // Both branches were really visited, and every particle failed once ε ≥ κc.
-    assert!(softening > 2000, "{softening} softening steps");
-    assert!(failed > 100, "{failed} steps after failure");
-    assert_eq!(sim.failed_particles(), positions.len());
+    softened_then_failed(&sim, softening, failed);
 }
 
 #[test]
@@ -162,32 +178,33 @@ fn gk_k(volume: f64) -> f64 {
     1e3f64.powf(GK_M) / volume
 }
 
-#[test]
-fn grady_kipp_patch_has_no_damage_below_the_first_flaw_and_grows_by_the_law() {
+/// Drives a 10 × 10 Grady–Kipp patch (Δx = 1, ρ = 1, k of [`gk_k`], seed 7) made of
+/// `material(law)` through plane-strain F = diag(f, 1) and checks D particle by particle
+/// against the law: none below the first flaw, then Δ(D^{1/3}) = Δt n_act c_g/R_s up to the
+/// cap n_act/n_i, and failure of every particle whose flaws are all active (numerics.md §9.2).
+/// `effective(ε)` is the body's tensile driving strain σ1⁺(σ_eff)/E at Hencky strain ε = ln f,
+/// and `strain_for` its inverse.
+fn grady_kipp_patch_follows_the_law(
+    material: impl Fn(DamageModel) -> MaterialModel,
+    effective: impl Fn(f64) -> f64,
+    strain_for: impl Fn(f64) -> f64,
+) {
     let dx = 1.0;
     let positions = lattice([10, 10], dx);
     let n = positions.len();
     let volume = n as f64 * dx * dx;
-    let elastic = LinearElastic::new(1.0, 0.3).unwrap();
     let gk = GradyKipp::new(GK_M, gk_k(volume)).unwrap();
     let seed = 7;
-    let mut sim = Simulation::new(damaged(
-        positions.clone(),
-        dx,
-        elastic,
-        DamageModel::GradyKipp { model: gk, seed },
-        1e9,
-    ))
-    .unwrap();
+    let model = material(DamageModel::GradyKipp { model: gk, seed });
+    let m = model.longitudinal_modulus();
+    let mut sim = Simulation::new(with_material(positions.clone(), dx, model, 1e9)).unwrap();
     // Independent copy of the flaws (same public seeding) and of the law's constants.
     let flaws = gk.seed_flaws(n, volume, seed);
     let first = gk.activation_strain(1, volume);
     assert!((first - 1e-3).abs() < 1e-15);
-    let (e, m) = (elastic.youngs_modulus(), elastic.longitudinal_modulus());
     let crack_speed = 0.4 * (m / 1.0f64).sqrt(); // c_g = 0.4 c_l, ρ = 1
     let radius = 0.5 * dx; // R_s = ½Δx
-                           // Plane strain, F = diag(f, 1): σ1 = σ_xx = M ln f, so ε_eff = M ln f / E.
-    let stretch_for = |eps_eff: f64| (eps_eff * e / m).exp();
+    let stretch_for = |eps_eff: f64| strain_for(eps_eff).exp();
     sim.step().unwrap();
     // Ramp to 0.98 ε_1: no flaw is active, so nothing may damage.
     let below = stretch_for(0.98 * first);
@@ -211,7 +228,7 @@ fn grady_kipp_patch_has_no_damage_below_the_first_flaw_and_grows_by_the_law() {
         let dt = sim.next_dt();
         drive_to(&mut sim, &positions, f, next);
         f = next;
-        let eps_eff = m * f.ln() / e;
+        let eps_eff = effective(f.ln());
         for i in 0..n {
             let d = sim.sample(ParticleField::Damage, i);
             let active = flaws[i].iter().filter(|&&t| t <= eps_eff).count();
@@ -244,16 +261,161 @@ fn grady_kipp_patch_has_no_damage_below_the_first_flaw_and_grows_by_the_law() {
     }
     assert!(grown > 10 && capped > 10, "grown {grown}, capped {capped}");
     // A particle whose flaws are all active reaches D = 1 and fails (numerics.md §9.3).
+    let eps_eff = effective(f.ln());
     let all_active = (0..n)
-        .filter(|&i| !flaws[i].is_empty() && flaws[i].iter().all(|&t| t <= m * f.ln() / e))
+        .filter(|&i| !flaws[i].is_empty() && flaws[i].iter().all(|&t| t <= eps_eff))
         .count();
     assert!(all_active > 0);
     assert_eq!(sim.failed_particles(), all_active);
 }
 
-/// A 2D bar pulled apart at both ends until Grady–Kipp damage fails particles; returns the
-/// damage field and stresses.
-fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>, usize) {
+#[test]
+fn grady_kipp_patch_has_no_damage_below_the_first_flaw_and_grows_by_the_law() {
+    // Elastic, plane strain, F = diag(f, 1): σ1 = σ_xx = M ln f, so ε_eff = M ε / E.
+    let elastic = LinearElastic::new(1.0, 0.3).unwrap();
+    let (e, m) = (elastic.youngs_modulus(), elastic.longitudinal_modulus());
+    grady_kipp_patch_follows_the_law(
+        |damage| MaterialModel::ElasticDamage(ElasticDamage { elastic, damage }),
+        |strain| m * strain / e,
+        |eps_eff| eps_eff * e / m,
+    );
+}
+
+#[test]
+fn grady_kipp_on_a_yielding_plastic_patch_reads_its_effective_stress() {
+    // Von Mises, perfectly plastic, σ_y = 2e-4 (E = 1, ν = 0.3): the patch yields at
+    // ε_y = σ_y/2G = 2.6e-4, far below the first flaw. Past yield σ1 = σ_xx = K ε + ⅔σ_y
+    // (pressure K ε, deviator held at ⅔σ_y), so ε_eff = (K ε + ⅔σ_y)/E. Damage read from the
+    // elastic stress M ε would start at ε = 7.4e-4; the law's 1.04e-3 is where this one must.
+    let elastic = LinearElastic::new(1.0, 0.3).unwrap();
+    let sigma_y = 2e-4;
+    let (e, k) = (elastic.youngs_modulus(), elastic.bulk_modulus());
+    let yield_strain = sigma_y / (2.0 * elastic.shear_modulus());
+    assert!(yield_strain < 0.5 * 0.98e-3 * e / elastic.longitudinal_modulus());
+    grady_kipp_patch_follows_the_law(
+        |damage| plastic_with_damage(elastic, sigma_y, damage),
+        |strain| (k * strain + 2.0 / 3.0 * sigma_y) / e,
+        |eps_eff| (e * eps_eff - 2.0 / 3.0 * sigma_y) / k,
+    );
+}
+
+/// A hypoelastic, perfectly plastic von Mises material of yield stress `sigma_y` that softens
+/// by `damage`.
+fn plastic_with_damage(elastic: LinearElastic, sigma_y: f64, damage: DamageModel) -> MaterialModel {
+    MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic,
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(sigma_y, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: None,
+        failure: None,
+        damage: Some(damage),
+    })
+}
+
+#[test]
+fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
+    // 1D (uniaxial strain), E = 1, ν = 0 (K = ⅓, G = ½, M = 1), σ_y = 5e-4: yield at
+    // ε_y = σ_y/2G = 5e-4, before damage starts at κ0 = 1e-3. The effective stress is the
+    // plastic one: σ_xx = M ε up to ε_y, then K ε + ⅔σ_y, and σ_yy = σ_zz = K ε − ⅓σ_y
+    // (≥ 0 past yield). The body feels each positive principal value times (1 − D(ε))
+    // (numerics.md §9.1), and the plastic strain runs on undisturbed by the damage. Same 1e-12
+    // argument as the elastic patch above.
+    let dx = 1.0;
+    let positions = lattice([12], dx);
+    let elastic = LinearElastic::new(1.0, 0.0).unwrap();
+    let sigma_y = 5e-4;
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let material = plastic_with_damage(elastic, sigma_y, DamageModel::Peerlings(law));
+    let mut sim = Simulation::new(with_material(positions.clone(), dx, material, 1e9)).unwrap();
+    assert!(sim.has_failure());
+    sim.step().unwrap();
+    let (bulk, yield_strain) = (1.0 / 3.0, 5e-4);
+    let steps = 3000;
+    let target = 0.012f64.exp(); // Hencky strain 0.012 > κc
+    let mut f = 1.0;
+    let (mut softening, mut failed) = (0, 0);
+    for k in 1..=steps {
+        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+        let strain = f.ln();
+        let (xx, yy, plastic) = if strain <= yield_strain {
+            (strain, 0.0, 0.0)
+        } else {
+            (
+                bulk * strain + 2.0 / 3.0 * sigma_y,
+                bulk * strain - sigma_y / 3.0,
+                // Δε̄p = ⅔ Δε once the deviator is held on the surface.
+                2.0 / 3.0 * (strain - yield_strain),
+            )
+        };
+        let d = law.damage(strain); // κ = ε on this monotone path
+        let felt = |s: f64| if s > 0.0 { (1.0 - d) * s } else { s };
+        let failed_now = sim.failed_particles() == positions.len();
+        let (xx, yy) = if failed_now {
+            (0.0, 0.0)
+        } else {
+            (felt(xx), felt(yy))
+        };
+        for i in 0..positions.len() {
+            let sigma = sim.stresses()[i];
+            assert!(
+                (sigma[(0, 0)] - xx).abs() < 1e-12 && (sigma[(1, 1)] - yy).abs() < 1e-12,
+                "step {k}, ε = {strain}: σ_xx = {}, σ_yy = {}, expected {xx}, {yy}",
+                sigma[(0, 0)],
+                sigma[(1, 1)]
+            );
+            if !failed_now {
+                let ep = sim.sample(ParticleField::PlasticStrain, i);
+                assert!(
+                    (ep - plastic).abs() < 1e-12,
+                    "step {k}: ε̄p = {ep}, {plastic}"
+                );
+            }
+        }
+        if d > 0.0 && !failed_now {
+            softening += 1;
+        }
+        if failed_now {
+            failed += 1;
+            assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
+        }
+    }
+    softened_then_failed(&sim, softening, failed);
+}
+
+#[test]
+fn a_plastic_material_takes_damage_or_failure_not_both() {
+    use tlsph_materials::MaxPlasticStrainFailure;
+    let dx = 1.0;
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let mut material = plastic_with_damage(
+        LinearElastic::new(1.0, 0.0).unwrap(),
+        5e-4,
+        DamageModel::Peerlings(law),
+    );
+    if let MaterialModel::ElasticPlastic(p) = &mut material {
+        p.failure = Some(tlsph_solver::FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(0.1).unwrap(),
+        ));
+    }
+    match Simulation::new(with_material(lattice([6], dx), dx, material, 1.0)) {
+        Err(SetupError::InvalidConfig { field, message }) => {
+            assert_eq!(field, "damage");
+            assert!(message.contains("material `"), "{message}");
+        }
+        other => panic!("expected a damage error, got {other:?}"),
+    }
+}
+
+/// A 2D bar pulled apart at both ends until Grady–Kipp damage fails particles; elastic, or
+/// with `yield_stress` elastic–plastic. Returns the damage field and stresses.
+fn pulled_bar(
+    seed: u64,
+    threads: usize,
+    yield_stress: Option<f64>,
+) -> (Vec<f64>, Vec<tlsph_math::Tensor3>, usize) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -265,13 +427,12 @@ fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>,
         let volume = n as f64;
         let elastic = LinearElastic::new(1.0, 0.3).unwrap();
         let gk = GradyKipp::new(GK_M, gk_k(volume)).unwrap();
-        let mut m = damaged(
-            positions.clone(),
-            dx,
-            elastic,
-            DamageModel::GradyKipp { model: gk, seed },
-            120.0,
-        );
+        let damage = DamageModel::GradyKipp { model: gk, seed };
+        let material = match yield_stress {
+            None => MaterialModel::ElasticDamage(ElasticDamage { elastic, damage }),
+            Some(sigma_y) => plastic_with_damage(elastic, sigma_y, damage),
+        };
+        let mut m = with_material(positions.clone(), dx, material, 120.0);
         let ends = |left: bool| -> Vec<usize> {
             (0..n)
                 .filter(|&i| (positions[i][0] < 1.0) == left && (positions[i][0] > 29.0) != left)
@@ -289,6 +450,13 @@ fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>,
         }
         let mut sim = Simulation::new(m).unwrap();
         sim.run(|_, _| {}).unwrap();
+        if yield_stress.is_some() {
+            // The plastic variant really yields somewhere.
+            let largest = (0..n)
+                .map(|i| sim.sample(ParticleField::PlasticStrain, i))
+                .fold(0.0, f64::max);
+            assert!(largest > 1e-4, "largest plastic strain {largest}");
+        }
         let damage = (0..n)
             .map(|i| sim.sample(ParticleField::Damage, i))
             .collect();
@@ -298,20 +466,27 @@ fn pulled_bar(seed: u64, threads: usize) -> (Vec<f64>, Vec<tlsph_math::Tensor3>,
 
 #[test]
 fn damaged_runs_are_deterministic_and_follow_the_seed() {
-    let (d1, s1, failed) = pulled_bar(11, 1);
-    let (d2, s2, failed2) = pulled_bar(11, 2);
-    // The run really damaged and failed particles ...
-    assert!(failed > 0 && d1.iter().any(|&d| d > 0.0 && d < 1.0));
-    // ... bit-identically for one and two threads with the same seed ...
-    assert_eq!(failed, failed2);
-    assert!(d1.iter().zip(&d2).all(|(a, b)| a.to_bits() == b.to_bits()));
-    assert!(s1.iter().zip(&s2).all(|(a, b)| a
-        .iter()
-        .zip(b.iter())
-        .all(|(x, y)| x.to_bits() == y.to_bits())));
-    // ... and another seed places the flaws elsewhere.
-    let (d3, _, _) = pulled_bar(12, 2);
-    assert!(d1.iter().zip(&d3).any(|(a, b)| a != b));
+    // Elastic, and elastic–plastic with σ_y = 1e-3 (E = 1, the first flaw at a tensile
+    // stress of 1e-3): that bar yields (asserted in `pulled_bar`) and damages.
+    for yield_stress in [None, Some(1e-3)] {
+        let (d1, s1, failed) = pulled_bar(11, 1, yield_stress);
+        let (d2, s2, failed2) = pulled_bar(11, 2, yield_stress);
+        // The run really damaged and failed particles ...
+        assert!(
+            failed > 0 && d1.iter().any(|&d| d > 0.0 && d < 1.0),
+            "{yield_stress:?}: {failed} failed"
+        );
+        // ... bit-identically for one and two threads with the same seed ...
+        assert_eq!(failed, failed2);
+        assert!(d1.iter().zip(&d2).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert!(s1.iter().zip(&s2).all(|(a, b)| a
+            .iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())));
+        // ... and another seed places the flaws elsewhere.
+        let (d3, _, _) = pulled_bar(12, 2, yield_stress);
+        assert!(d1.iter().zip(&d3).any(|(a, b)| a != b));
+    }
 }
 
 #[test]

@@ -21,6 +21,7 @@ pub(super) fn copper() -> ElasticPlastic {
         min_pressure: None,
         thermal: None,
         failure: None,
+        damage: None,
     }
 }
 
@@ -152,6 +153,7 @@ pub(super) fn brittle_plastic() -> MaterialModel {
         failure: Some(FailureModel::MaxPlasticStrain(
             MaxPlasticStrainFailure::new(0.05).unwrap(),
         )),
+        damage: None,
     })
 }
 
