@@ -1,6 +1,6 @@
-//! A fixed rigid plane (e.g. an anvil): a penalty spring pushes back every particle whose
-//! half-spacing sphere penetrates the plane, and optional Coulomb friction on the touching
-//! particles (numerics.md §13 `[C]`). Depends on current positions and velocities only. A
+//! A fixed rigid plane (e.g. an anvil), or a flat wall of finite size: a penalty spring pushes
+//! back every particle whose half-spacing sphere penetrates the wall, and optional Coulomb
+//! friction on the touching particles (numerics.md §13 `[C]`). Depends on current positions and velocities only. A
 //! plane moving by d(t) at v_w is this plane seen from the wall: pass x − d(t) and v − v_w
 //! (the solver's moving walls do so).
 
@@ -11,16 +11,50 @@ use tlsph_math::Vector;
 /// reducing the CFL step. Penetration under a contact stress σ is about 0.36 (σ/M) Δx.
 pub const WALL_STIFFNESS_FACTOR: f64 = 4.0;
 
-/// The plane and the per-particle penalty law (numerics.md §13 `[C]`).
+/// The per-particle penalty law shared by every wall shape (numerics.md §13 `[C]`): each
+/// particle is a sphere of radius Δx/2 on a spring of stiffness per mass
+/// WALL_STIFFNESS_FACTOR c0²/h².
+#[derive(Debug, Clone)]
+struct PenaltySprings {
+    /// Per-particle penalty stiffness divided by mass \[1/s²\].
+    stiffness_per_mass: Vec<f64>,
+    /// Per-particle contact radius: half its body's spacing \[m\].
+    radius: Vec<f64>,
+}
+
+impl PenaltySprings {
+    fn new(h: &[f64], c0: &[f64], dx: &[f64]) -> Self {
+        Self {
+            stiffness_per_mass: h
+                .iter()
+                .zip(c0)
+                .map(|(h, c)| WALL_STIFFNESS_FACTOR * c * c / (h * h))
+                .collect(),
+            radius: dx.iter().map(|d| 0.5 * d).collect(),
+        }
+    }
+}
+
+/// The shape of a rigid wall as its contact law sees it (numerics.md §13 `[C]`): for particle
+/// `i` at `x` (in the wall's frame at rest), the penetration δ ≥ 0 of the particle's
+/// half-spacing sphere and the unit direction in which the wall pushes it. The spring stores
+/// ½ m k δ², and the push k δ is the negative gradient of that energy, so a wall of any shape
+/// conserves energy with the particles it touches.
+pub trait WallGeometry<const D: usize>: std::fmt::Debug + Send + Sync {
+    /// (δ, unit push direction) of particle `i` at `x`; δ = 0 when it does not touch.
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>);
+
+    /// Penalty stiffness per unit mass k/m of particle `i` \[1/s²\].
+    fn stiffness_per_mass(&self, i: usize) -> f64;
+}
+
+/// An unbounded rigid plane with the per-particle penalty law (numerics.md §13 `[C]`).
 #[derive(Debug, Clone)]
 pub struct RigidPlane<const D: usize> {
     point: Vector<D>,
     /// Unit normal into the half-space where particles may be.
     normal: Vector<D>,
-    /// Per-particle penalty stiffness divided by mass, WALL_STIFFNESS_FACTOR c0²/h² \[1/s²\].
-    stiffness_per_mass: Vec<f64>,
-    /// Per-particle contact radius: half its body's spacing \[m\].
-    radius: Vec<f64>,
+    springs: PenaltySprings,
 }
 
 impl<const D: usize> RigidPlane<D> {
@@ -31,12 +65,7 @@ impl<const D: usize> RigidPlane<D> {
         Self {
             point,
             normal: normal.normalize(),
-            stiffness_per_mass: h
-                .iter()
-                .zip(c0)
-                .map(|(h, c)| WALL_STIFFNESS_FACTOR * c * c / (h * h))
-                .collect(),
-            radius: dx.iter().map(|d| 0.5 * d).collect(),
+            springs: PenaltySprings::new(h, c0, dx),
         }
     }
 
@@ -48,20 +77,110 @@ impl<const D: usize> RigidPlane<D> {
     /// Penetration δ = Δx/2 − (x − point)·n̂ of particle `i` at `x`, or 0.
     #[inline]
     pub fn penetration(&self, i: usize, x: Vector<D>) -> f64 {
-        (self.radius[i] - (x - self.point).dot(&self.normal)).max(0.0)
+        (self.springs.radius[i] - (x - self.point).dot(&self.normal)).max(0.0)
     }
 
     /// Penalty stiffness per unit mass k/m of particle `i` \[1/s²\].
     #[inline]
     pub fn stiffness_per_mass(&self, i: usize) -> f64 {
-        self.stiffness_per_mass[i]
+        self.springs.stiffness_per_mass[i]
     }
 
     /// Normal acceleration magnitude (k/m) δ of the penalty spring on particle `i` at `x`; the
     /// spring stores ½ m (k/m) δ².
     #[inline]
     pub fn normal_acceleration(&self, i: usize, x: Vector<D>) -> f64 {
-        self.stiffness_per_mass[i] * self.penetration(i, x)
+        self.stiffness_per_mass(i) * self.penetration(i, x)
+    }
+}
+
+impl<const D: usize> WallGeometry<D> for RigidPlane<D> {
+    /// Half-space: δ = Δx/2 − (x − point)·n̂, pushed along n̂ (a particle behind the plane is
+    /// pushed back to the front).
+    #[inline]
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+        (self.penetration(i, x), self.normal)
+    }
+
+    #[inline]
+    fn stiffness_per_mass(&self, i: usize) -> f64 {
+        RigidPlane::stiffness_per_mass(self, i)
+    }
+}
+
+/// A flat rigid wall of finite size (ours, not in the theses): the disc of radius R about
+/// `point` in the plane normal to n̂ (3D), or the segment of half-length R (2D). It is a
+/// plate of zero thickness with a rounded rim: a particle touches it when its half-spacing
+/// sphere reaches the disc, δ = Δx/2 − s with s the distance from x to the nearest point of
+/// the disc, and is pushed away from that point. In front of the face (in-plane distance from
+/// the centre r_t ≤ R) that is the plane's law, δ = Δx/2 − |z| along ±n̂ (z the height above
+/// the plane); past the rim the push turns around the edge, so a particle sliding off the
+/// edge is released smoothly (s is continuous, and the push is the gradient of the spring's
+/// ½ k δ²). Both faces push: a particle cannot pass through the plate where r_t ≤ R, except
+/// by a penetration of Δx/2, under a contact stress of about 1.4 M.
+#[derive(Debug, Clone)]
+pub struct FlatDisc<const D: usize> {
+    point: Vector<D>,
+    /// Unit normal of the disc's plane (its front face).
+    normal: Vector<D>,
+    /// R \[m\].
+    radius: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> FlatDisc<D> {
+    /// The disc (segment in 2D) of radius `radius` about `point`, normal to `normal`
+    /// (normalised here), for particles with smoothing lengths `h`, sound speeds `c0` and
+    /// spacings `dx` (one entry per particle).
+    pub fn new(
+        point: Vector<D>,
+        normal: Vector<D>,
+        radius: f64,
+        h: &[f64],
+        c0: &[f64],
+        dx: &[f64],
+    ) -> Self {
+        Self {
+            point,
+            normal: normal.normalize(),
+            radius,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+
+    /// Distance s from `x` to the nearest point of the disc and the unit direction from that
+    /// point to `x` (n̂ for a point on the disc itself).
+    #[inline]
+    pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
+        let offset = x - self.point;
+        let z = offset.dot(&self.normal);
+        let in_plane = offset - self.normal * z;
+        let r_t = in_plane.norm();
+        if r_t <= self.radius {
+            let side = if z < 0.0 { -1.0 } else { 1.0 };
+            (z.abs(), self.normal * side)
+        } else {
+            let away = offset - in_plane * (self.radius / r_t);
+            let s = away.norm();
+            if s > 0.0 {
+                (s, away / s)
+            } else {
+                (0.0, self.normal)
+            }
+        }
+    }
+}
+
+impl<const D: usize> WallGeometry<D> for FlatDisc<D> {
+    #[inline]
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+        let (s, direction) = self.distance(x);
+        ((self.springs.radius[i] - s).max(0.0), direction)
+    }
+
+    #[inline]
+    fn stiffness_per_mass(&self, i: usize) -> f64 {
+        self.springs.stiffness_per_mass[i]
     }
 }
 

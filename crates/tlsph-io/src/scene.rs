@@ -649,18 +649,39 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             ));
         }
         let unit = normal / normal.norm();
+        let radius = match &w.radius {
+            None => None,
+            Some(r) if D < 2 => {
+                return Err(ctx.error(
+                    &r.span(),
+                    &format!("wall[{name}].radius"),
+                    "a 1D wall is a point; a finite wall needs a 2D or 3D scene".into(),
+                ))
+            }
+            Some(r) => Some(ctx.positive(r, &format!("wall[{name}].radius"))?),
+        };
+        // Of a finite wall only what lies in front of or behind its face can be on the wrong
+        // side; beyond its rim a body may be anywhere.
+        let in_footprint = |x: &Vector<D>| {
+            radius.is_none_or(|r| {
+                let offset = x - point;
+                (offset - unit * offset.dot(&unit)).norm() <= r
+            })
+        };
         for body in &bodies {
             let behind = body
                 .positions
                 .iter()
+                .filter(|x| in_footprint(x))
                 .map(|x| (x, (x - point).dot(&unit)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
+                let face = if radius.is_some() { "disc" } else { "plane" };
                 return Err(ctx.error(
                     &w.point.span(),
                     &format!("wall[{name}].point"),
                     format!(
-                        "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the plane (particles must start on the side the normal points to)",
+                        "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the {face} (particles must start on the side the normal points to)",
                         body.name,
                         point_text(x),
                         -d
@@ -722,12 +743,39 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 None
             }
         };
+        if let (Some(r), Some(span)) = (radius, w.radius.as_ref().map(|r| r.span())) {
+            // The mirrored half of the model meets the disc's mirror image. A disc crossing a
+            // symmetry plane must be centred on it and stay so, or the two would overlap into
+            // another shape.
+            let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
+            let asymmetric = file.symmetry_plane.iter().find(|p| {
+                let position = *p.position.get_ref();
+                axis_index(p.axis.get_ref()).is_some_and(|a| {
+                    a < D
+                        && unit[a] == 0.0
+                        && (point[a] - position).abs() < r
+                        && (point[a] != position || sliding(a))
+                })
+            });
+            if let Some(plane) = asymmetric {
+                return Err(ctx.error(
+                    &span,
+                    &format!("wall[{name}].radius"),
+                    format!(
+                        "the disc crosses the symmetry plane {} = {} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the disc on the plane and move it along the plane's normal only, or keep it clear of the plane",
+                        plane.axis.get_ref(),
+                        plane.position.get_ref()
+                    ),
+                ));
+            }
+        }
         effects.walls.push(WallDescription {
             name,
             point,
             normal,
             friction,
             motion,
+            radius,
         });
     }
     for plane in &file.symmetry_plane {

@@ -123,8 +123,8 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid plane, frictionless unless `friction` is given, fixed unless
-/// `velocity` is given (with an optional start-up ramp).
+/// `[[wall]]`: a rigid plane, or a disc of `radius`, frictionless unless `friction` is
+/// given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
@@ -139,6 +139,8 @@ pub(crate) struct WallTable {
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
     pub amplitude_shape: Option<Spanned<String>>,
+    /// Finite size: the disc (segment in 2D) of this radius about `point`.
+    pub radius: Option<Spanned<f64>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

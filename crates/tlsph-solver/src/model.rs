@@ -647,6 +647,10 @@ pub struct WallDescription<const D: usize> {
     pub friction: FrictionCoefficients,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
+    /// Finite size (2D and 3D): the wall is the disc of this radius about `point` (the
+    /// segment of this half-length in 2D), a plate with a rounded rim
+    /// (`tlsph_contact::FlatDisc`) \[m\]; `None`: the unbounded plane.
+    pub radius: Option<f64>,
 }
 
 /// Translation of a rigid wall at a prescribed velocity (a platen, a piston, a conveyor

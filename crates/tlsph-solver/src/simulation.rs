@@ -24,7 +24,9 @@ use crate::step::{
 use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
-use tlsph_contact::{PenaltyLaw, PotentialLaw};
+use tlsph_contact::{
+    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidPlane, WallGeometry,
+};
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
 use tlsph_neighbours::build_neighbour_list;
@@ -1959,15 +1961,29 @@ fn build_effects<const D: usize>(
                 amplitude.validate().map_err(wall_error)?;
             }
         }
-        let plane = (wall.point, wall.normal);
-        let rigid = RigidWall::new(&wall.name, plane, wall.motion.clone(), &h, &c0, &dx);
-        // Friction right after its wall: it sees this step's normal kick.
-        let friction = coefficients
-            .is_frictional()
-            .then(|| rigid.friction(coefficients));
-        effects.push(BookedEffect::new(Box::new(rigid)));
-        if let Some(friction) = friction {
-            effects.push(BookedEffect::new(Box::new(friction)));
+        let (point, normal, motion) = (wall.point, wall.normal, wall.motion.clone());
+        match wall.radius {
+            None => {
+                let plane = RigidPlane::new(point, normal, &h, &c0, &dx);
+                push_wall(
+                    &mut effects,
+                    RigidWall::new(&wall.name, plane, motion),
+                    coefficients,
+                );
+            }
+            Some(radius) => {
+                if D < 2 || !(radius.is_finite() && radius > 0.0) {
+                    return Err(wall_error(format!(
+                        "radius must be finite and > 0 in a 2D or 3D scene, got {radius} in {D}D"
+                    )));
+                }
+                let disc = FlatDisc::new(point, normal, radius, &h, &c0, &dx);
+                push_wall(
+                    &mut effects,
+                    RigidWall::new(&wall.name, disc, motion),
+                    coefficients,
+                );
+            }
         }
     }
     if let Some((alpha, beta)) = model.effects.pairwise_viscosity {
@@ -2237,6 +2253,22 @@ fn contact_pairs<const D: usize>(
             .flat_map(|a| (a + 1..nb).map(move |b| (a, b)))
             .filter(|&(a, b)| !kernel_linked(a, b))
             .collect()),
+    }
+}
+
+/// Adds a wall of shape `G` and, when its surface has friction, its friction effect right
+/// after it (so the friction sees this step's normal kick).
+fn push_wall<const D: usize, G: WallGeometry<D> + Clone + 'static>(
+    effects: &mut Vec<BookedEffect<D>>,
+    wall: RigidWall<D, G>,
+    coefficients: FrictionCoefficients,
+) {
+    let friction = coefficients
+        .is_frictional()
+        .then(|| wall.friction(coefficients));
+    effects.push(BookedEffect::new(Box::new(wall)));
+    if let Some(friction) = friction {
+        effects.push(BookedEffect::new(Box::new(friction)));
     }
 }
 

@@ -1,8 +1,10 @@
-//! The rigid plane's penalty spring and its Coulomb friction (numerics.md §13).
+//! The rigid walls' penalty springs (the unbounded plane and the finite disc) and their
+//! Coulomb friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    wall_friction_acceleration, FrictionCoefficients, RigidPlane, Vector, WALL_STIFFNESS_FACTOR,
+    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidPlane, Vector, WallGeometry,
+    WALL_STIFFNESS_FACTOR,
 };
 
 #[test]
@@ -154,4 +156,115 @@ fn with_a_decay_the_sliding_coefficient_falls_from_the_static_to_the_kinetic_one
         -10.0 * (0.3 + 0.3 * (-1.0f64).exp()),
         max_relative = 1e-14
     );
+}
+
+/// A disc of radius 2 about the origin in the plane z = 0 (normal given unnormalised), for one
+/// particle with h = 1.2, c0 = 3, Δx = 1 (contact radius ½).
+fn disc() -> FlatDisc<3> {
+    FlatDisc::<3>::new(
+        Vector::zeros(),
+        Vector::<3>::new(0.0, 0.0, 5.0),
+        2.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    )
+}
+
+#[test]
+fn a_finite_wall_pushes_off_its_faces_and_around_its_rim() {
+    let disc = disc();
+    let z = Vector::<3>::z();
+    // In front of the face: the plane's law.
+    let (delta, n) = disc.contact(0, Vector::<3>::new(1.0, -1.0, 0.3));
+    assert_relative_eq!(delta, 0.2, max_relative = 1e-14);
+    assert_eq!(n, z);
+    // Behind the face: pushed back, away from the plate (it has two faces).
+    let (delta, n) = disc.contact(0, Vector::<3>::new(0.5, 0.5, -0.4));
+    assert_relative_eq!(delta, 0.1, max_relative = 1e-13);
+    assert_eq!(n, -z);
+    // Past the rim: away from the nearest rim point (2, 0, 0), here at 45° around the edge.
+    let (delta, n) = disc.contact(0, Vector::<3>::new(2.3, 0.0, 0.3));
+    assert_relative_eq!(delta, 0.5 - 0.3 * 2f64.sqrt(), max_relative = 1e-13);
+    assert_relative_eq!(
+        n,
+        Vector::<3>::new(1.0, 0.0, 1.0).normalize(),
+        max_relative = 1e-14
+    );
+    // Level with the plate, beside it: pushed sideways; further out: untouched.
+    let (delta, n) = disc.contact(0, Vector::<3>::new(0.0, -2.4, 0.0));
+    assert_relative_eq!(delta, 0.1, max_relative = 1e-13);
+    assert_relative_eq!(n, Vector::<3>::new(0.0, -1.0, 0.0), max_relative = 1e-14);
+    assert_eq!(disc.contact(0, Vector::<3>::new(2.4, 0.0, 0.4)).0, 0.0);
+    assert_eq!(disc.contact(0, Vector::<3>::new(0.0, 0.0, 0.6)).0, 0.0);
+    // The same stiffness as the plane's.
+    assert_relative_eq!(
+        disc.stiffness_per_mass(0),
+        WALL_STIFFNESS_FACTOR * 9.0 / 1.44,
+        max_relative = 1e-15
+    );
+}
+
+#[test]
+fn a_finite_wall_pushes_down_the_gradient_of_its_spring_energy() {
+    // The push k δ n̂ must be −∇(½ k δ²) everywhere a particle can be, the rim included, or a
+    // particle sliding off the edge would gain or lose energy. Central differences at points
+    // in front of the face, over the rounded rim and beside it.
+    let disc = disc();
+    let energy = |x: Vector<3>| 0.5 * disc.contact(0, x).0.powi(2);
+    let eps = 1e-6;
+    let mut checked = 0;
+    for &(x, y, z) in &[
+        (0.3, 0.2, 0.35),
+        (1.99, 0.0, 0.2),
+        (2.1, 0.1, 0.2),
+        (1.5, 1.5, 0.1),
+        (2.2, -0.3, -0.15),
+        (0.0, 2.3, 0.0),
+        (-1.6, -1.3, 0.4),
+    ] {
+        let at = Vector::<3>::new(x, y, z);
+        let (delta, n) = disc.contact(0, at);
+        assert!(delta > 0.0, "({x}, {y}, {z}) must touch");
+        let push = n * delta;
+        for axis in 0..3 {
+            let step = Vector::<3>::ith(axis, eps);
+            let slope = (energy(at + step) - energy(at - step)) / (2.0 * eps);
+            assert!(
+                (push[axis] + slope).abs() < 1e-8,
+                "({x}, {y}, {z}), axis {axis}: push {} vs −∂E {}",
+                push[axis],
+                -slope
+            );
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 7);
+}
+
+#[test]
+fn inside_its_footprint_a_finite_wall_is_the_plane() {
+    // In 2D (a segment of half-length 3 on y = 1), a particle in front of the segment feels
+    // exactly what it feels from the unbounded plane.
+    let plane = RigidPlane::<2>::new(
+        Vector::<2>::new(0.0, 1.0),
+        Vector::<2>::new(0.0, 1.0),
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let segment = FlatDisc::<2>::new(
+        Vector::<2>::new(0.0, 1.0),
+        Vector::<2>::new(0.0, 1.0),
+        3.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    for x in [-3.0, -1.2, 0.0, 2.9, 3.0] {
+        for y in [1.0, 1.1, 1.37, 1.5, 2.0] {
+            let at = Vector::<2>::new(x, y);
+            assert_eq!(segment.contact(0, at), plane.contact(0, at), "({x}, {y})");
+        }
+    }
 }

@@ -219,3 +219,61 @@ fn a_particle_closer_to_a_plane_than_a_quarter_spacing_is_refused_at_the_plane()
         parse_scene(&plane(x), "blocks.toml").unwrap();
     }
 }
+
+#[test]
+fn a_finite_wall_is_read_and_only_its_footprint_must_be_clear() {
+    // A punch: a segment of half-length 2 mm over the left block's top face, pressing down.
+    let punch = "\n[[wall]]\nname = \"punch\"\npoint = [5.0e-3, 10.0e-3]\nnormal = [0.0, -1.0]\nradius = 2.0e-3\nvelocity = [0.0, -1.0]\n";
+    let text = TWO_BLOCKS.replace("GAP", "10.0e-3") + punch;
+    let scene = parse_scene(&text, "blocks.toml").unwrap();
+    let tlsph_io::DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert_eq!(model.effects.walls[0].radius, None);
+    assert_eq!(model.effects.walls[1].radius, Some(2.0e-3));
+    // Lowered into the block by 1 mm: the rows under its face start behind it...
+    let sunk = text.replace("point = [5.0e-3, 10.0e-3]", "point = [5.0e-3, 9.0e-3]");
+    let e = error_of(&sunk);
+    assert_eq!(e.field, "wall[punch].point", "{e}");
+    assert!(
+        e.message.contains("body `left` starts behind the wall")
+            && e.message.contains("far side of the disc"),
+        "{e}"
+    );
+    // ... but beside the block, with the block's rows behind its plane and outside its
+    // footprint, it is accepted (an unbounded plane there would be refused).
+    let beside = text.replace("point = [5.0e-3, 10.0e-3]", "point = [-3.0e-3, 9.0e-3]");
+    parse_scene(&beside, "blocks.toml").unwrap();
+    let unbounded = beside.replace("radius = 2.0e-3\n", "");
+    assert_eq!(error_of(&unbounded).field, "wall[punch].point");
+    // Bad radii, and a 1D scene, are refused at the key.
+    for (radius, fragment) in [("0.0", "> 0"), ("-1.0e-3", "> 0")] {
+        let bad = text.replace("radius = 2.0e-3", &format!("radius = {radius}"));
+        let e = error_of(&bad);
+        assert_eq!(e.field, "wall[punch].radius", "{e}");
+        assert!(e.message.contains(fragment), "{e}");
+        assert_eq!(e.line, Some(line_of(&bad, &format!("radius = {radius}"))));
+    }
+    let rod = "[simulation]\ndimension = 1\nformulation = \"total-lagrangian-corrected\"\nkernel = \"cubic-spline\"\nsmoothing_factor = 1.2\ncfl = 0.3\nend_time = 1.0\n\n[[material]]\nname = \"m\"\nmodel = \"linear-elastic\"\ndensity = 1.0\nyoungs_modulus = 1.0\npoisson_ratio = 0.0\n\n[[body]]\nname = \"rod\"\nmaterial = \"m\"\nspacing = 0.1\nbox = { min = [0.0], max = [1.0] }\n\n[[wall]]\nname = \"end\"\npoint = [0.0]\nnormal = [1.0]\nradius = 1.0\n";
+    let e = error_of(rod);
+    assert_eq!(e.field, "wall[end].radius", "{e}");
+    assert!(e.message.contains("2D or 3D"), "{e}");
+}
+
+#[test]
+fn a_finite_wall_across_a_symmetry_plane_must_be_centred_on_it_and_stay() {
+    // Half model about x = 0 of a block under a punch of half-length 2 mm.
+    let half = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n"
+        + "\n[[wall]]\nname = \"punch\"\npoint = [CENTRE, 10.0e-3]\nnormal = [0.0, -1.0]\nradius = 2.0e-3\nvelocity = [VX, -1.0]\n";
+    let with = |centre: &str, vx: &str| half.replace("CENTRE", centre).replace("VX", vx);
+    parse_scene(&with("0.0", "0.0"), "half.toml").unwrap();
+    // Clear of the plane it may sit anywhere and slide.
+    parse_scene(&with("5.0e-3", "1.0"), "half.toml").unwrap();
+    for (centre, vx) in [("1.0e-3", "0.0"), ("0.0", "1.0")] {
+        let text = with(centre, vx);
+        let e = error_of(&text);
+        assert_eq!(e.field, "wall[punch].radius", "{centre}, {vx}: {e}");
+        assert!(e.message.contains("symmetry plane x = 0"), "{e}");
+    }
+}

@@ -1,5 +1,8 @@
-//! Rigid plane (e.g. an anvil): a penalty force pushes back every particle whose half-spacing
-//! sphere penetrates the plane (numerics.md §13 `[C]`). Depends on current positions only.
+//! Rigid wall (e.g. an anvil, or a flat punch of finite size): a penalty force pushes back
+//! every particle whose half-spacing sphere penetrates the wall (numerics.md §13 `[C]`).
+//! Depends on current positions only. The wall's shape is a type parameter
+//! ([`WallGeometry`]: an unbounded `RigidPlane` or a finite `FlatDisc`), so an unbounded
+//! wall's loop carries nothing of the finite one.
 //! With a friction coefficient the wall also carries a Coulomb friction effect of its own
 //! ([`WallFriction`]), booked and reported separately.
 //!
@@ -14,7 +17,7 @@ use super::{Effect, EffectContext};
 use crate::model::WallMotion;
 use rayon::prelude::*;
 use std::sync::Arc;
-use tlsph_contact::{wall_friction_acceleration, FrictionCoefficients, RigidPlane};
+use tlsph_contact::{wall_friction_acceleration, FrictionCoefficients, WallGeometry};
 use tlsph_math::Vector;
 
 /// Particles per rayon task of the wall loops.
@@ -23,12 +26,11 @@ const MIN_PER_TASK: usize = 1024;
 /// Chunk of the fixed-order sums (stored energy).
 const CHUNK: usize = 4096;
 
-/// A rigid frictionless plane through `point` with unit `normal` pointing into the half-space
-/// where particles may be, fixed or moving with `motion`.
+/// A rigid frictionless wall of shape `G`, fixed or moving with `motion`.
 #[derive(Debug, Clone)]
-pub struct RigidWall<const D: usize> {
+pub struct RigidWall<const D: usize, G> {
     name: String,
-    geometry: Arc<RigidPlane<D>>,
+    geometry: Arc<G>,
     motion: Option<WallMotion<D>>,
     resultant: Vector<D>,
     /// Σ ½ k δ² of the last evaluation \[J\].
@@ -41,18 +43,10 @@ pub struct RigidWall<const D: usize> {
     chunk_sums: Vec<(f64, Vector<D>)>,
 }
 
-impl<const D: usize> RigidWall<D> {
-    /// Builds the wall for particles whose bodies have smoothing lengths `h`, sound speeds
-    /// `c0` and spacings `dx` (per particle); `motion` moves it, `None` holds it fixed.
-    pub(crate) fn new(
-        name: &str,
-        (point, normal): (Vector<D>, Vector<D>),
-        motion: Option<WallMotion<D>>,
-        h: &[f64],
-        c0: &[f64],
-        dx: &[f64],
-    ) -> Self {
-        let geometry = RigidPlane::new(point, normal, h, c0, dx);
+impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
+    /// Builds the wall of shape `geometry` (which holds the particles' springs); `motion`
+    /// moves it, `None` holds it fixed.
+    pub(crate) fn new(name: &str, geometry: G, motion: Option<WallMotion<D>>) -> Self {
         Self {
             name: format!("wall_{name}"),
             geometry: Arc::new(geometry),
@@ -67,7 +61,7 @@ impl<const D: usize> RigidWall<D> {
 
     /// Coulomb friction with `coefficients` on this wall's contacts, as an effect of its own
     /// named `wall_<name>_friction` (to be applied right after the wall).
-    pub(crate) fn friction(&self, coefficients: FrictionCoefficients) -> WallFriction<D> {
+    pub(crate) fn friction(&self, coefficients: FrictionCoefficients) -> WallFriction<D, G> {
         WallFriction {
             name: format!("{}_friction", self.name),
             geometry: Arc::clone(&self.geometry),
@@ -85,7 +79,7 @@ fn wall_shift<const D: usize>(motion: &Option<WallMotion<D>>, t: f64) -> Vector<
         .map_or(Vector::zeros(), |m| m.displacement_at(t))
 }
 
-impl<const D: usize> Effect<D> for RigidWall<D> {
+impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for RigidWall<D, G> {
     fn clone_box(&self) -> Box<dyn Effect<D>> {
         Box::new(self.clone())
     }
@@ -105,16 +99,16 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
             .enumerate()
             .map(|(c, chunk)| {
                 let mut stored = 0.0;
-                let mut force = 0.0;
+                let mut force = Vector::<D>::zeros();
                 for (k, a) in chunk.iter_mut().enumerate() {
                     let i = c * CHUNK + k;
-                    let delta = wall.penetration(i, position(i));
+                    let (delta, direction) = wall.contact(i, position(i));
                     let a_n = wall.stiffness_per_mass(i) * delta;
-                    *a = wall.normal() * a_n;
+                    *a = direction * a_n;
                     stored += 0.5 * p.masses[i] * a_n * delta;
-                    force += p.masses[i] * a_n;
+                    force += *a * p.masses[i];
                 }
-                (stored, wall.normal() * force)
+                (stored, force)
             })
             .collect_into_vec(&mut self.chunk_sums);
         self.stored = self.chunk_sums.iter().map(|(e, _)| e).sum();
@@ -155,16 +149,16 @@ impl<const D: usize> Effect<D> for RigidWall<D> {
 /// relative to the wall's at the middle of the kick, t^n + ½Δt* (of the step's; exact once
 /// the wall's start-up is over).
 #[derive(Debug, Clone)]
-pub struct WallFriction<const D: usize> {
+pub struct WallFriction<const D: usize, G> {
     name: String,
-    geometry: Arc<RigidPlane<D>>,
+    geometry: Arc<G>,
     motion: Option<WallMotion<D>>,
     /// Kinetic and static friction coefficients (not both 0).
     coefficients: FrictionCoefficients,
     resultant: Vector<D>,
 }
 
-impl<const D: usize> Effect<D> for WallFriction<D> {
+impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFriction<D, G> {
     fn clone_box(&self) -> Box<dyn Effect<D>> {
         Box::new(self.clone())
     }
@@ -187,9 +181,10 @@ impl<const D: usize> Effect<D> for WallFriction<D> {
             .with_min_len(MIN_PER_TASK)
             .for_each(|(i, a)| {
                 let x = p.positions0[i] + p.displacements[i] - shift;
-                let a_n = wall.normal_acceleration(i, x);
+                let (delta, direction) = wall.contact(i, x);
+                let a_n = wall.stiffness_per_mass(i) * delta;
                 let sliding = p.velocities[i] - wall_velocity;
-                *a = wall_friction_acceleration(a_n, sliding, wall.normal(), mu, kick);
+                *a = wall_friction_acceleration(a_n, sliding, direction, mu, kick);
             });
     }
 

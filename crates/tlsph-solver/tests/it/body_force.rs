@@ -172,6 +172,7 @@ fn a_block_dropped_on_a_wall_gets_the_weight_impulse_back_and_energy_closes() {
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),
         motion: None,
+        radius: None,
     });
     let mut sim = Simulation::new(m).unwrap();
     let mass: f64 = sim.masses().iter().sum();

@@ -7,6 +7,7 @@ mod contact;
 mod contact_symmetry;
 mod damage;
 mod effects;
+mod finite_wall;
 mod long_runs;
 mod moving_wall;
 mod penalty_contact;

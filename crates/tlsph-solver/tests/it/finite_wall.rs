@@ -1,0 +1,91 @@
+//! Rigid walls of finite size (`WallDescription::radius`, `tlsph_contact::FlatDisc`): inside
+//! its footprint a finite wall is the unbounded plane, bit for bit; past its rim a block slides
+//! off, falls, and keeps its energy through the rounded edge.
+
+use super::wall_friction::block_on_floor;
+use tlsph_math::Vector;
+use tlsph_solver::{Model, SetupError, Simulation};
+
+/// Displacements at the end of a run of `m`.
+fn final_displacements(m: Model<2>) -> Vec<Vector<2>> {
+    let mut sim = Simulation::new(m).unwrap();
+    sim.run(|_, _| {}).unwrap();
+    sim.displacements().to_vec()
+}
+
+#[test]
+fn a_finite_wall_wider_than_the_body_is_the_plane() {
+    // The block of `block_on_floor` (0.5 wide) slides 0.05 c with friction μ = 0.3 and stops:
+    // under a floor segment of half-length 2 centred beneath it, every particle it touches is
+    // inside the footprint, where the segment's law is the plane's (normal force, direction
+    // and friction), so the run is the same to the last bit.
+    let (g, v0) = (Vector::<2>::new(0.0, -0.01), Vector::<2>::new(0.05, 0.0));
+    let plane = final_displacements(block_on_floor(g, v0, 0.3, 30.0));
+    let mut m = block_on_floor(g, v0, 0.3, 30.0);
+    m.effects.walls[0].radius = Some(2.0);
+    let segment = final_displacements(m);
+    assert!(plane[0].x > 0.1, "the block slid: {}", plane[0].x);
+    assert!(plane
+        .iter()
+        .zip(&segment)
+        .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
+}
+
+#[test]
+fn a_block_slides_off_the_rim_of_a_finite_floor_and_keeps_its_energy() {
+    // The block slides frictionless at 0.05 c along a floor segment ending at x = 0.7 (its
+    // right face starts at 0.45): it reaches the rim after 5 time units, tips over the
+    // rounded edge and falls. Over an unbounded floor it stays up. The push is the gradient
+    // of the spring energy everywhere, the rim included, so the total (kinetic + strain +
+    // spring − gravity's work) may move only by the time integration's error: measured
+    // 3.6e-6 of the potential energy the block has lost by the end; 1.25e-4 when the rim
+    // was a sharp edge that let go of a particle at once.
+    let (g, v0) = (Vector::<2>::new(0.0, -0.01), Vector::<2>::new(0.05, 0.0));
+    let end = 40.0;
+    let fall = |radius: Option<f64>| {
+        let mut m = block_on_floor(g, v0, 0.0, end);
+        m.effects.walls[0].point = Vector::<2>::new(-0.3, 0.0);
+        m.effects.walls[0].radius = radius;
+        let mut sim = Simulation::new(m).unwrap();
+        let e0 = sim.diagnostics().total_energy();
+        let mut drift: f64 = 0.0;
+        sim.run(|s, _| drift = drift.max((s.diagnostics().total_energy() - e0).abs()))
+            .unwrap();
+        let mass: f64 = sim.masses().iter().sum();
+        let drop = -sim
+            .displacements()
+            .iter()
+            .zip(sim.masses())
+            .map(|(u, m)| u.y * m)
+            .sum::<f64>()
+            / mass;
+        (drop, drift / (mass * g.norm() * drop.abs().max(1e-12)))
+    };
+    let (on_plane, _) = fall(None);
+    let (off_rim, drift) = fall(Some(1.0));
+    // Free fall for the ≈ 30 time units after the rim would drop the centre by ½ g t² ≈ 4.5.
+    assert!(
+        on_plane.abs() < 0.01,
+        "on the plane the block sank {on_plane}"
+    );
+    assert!(off_rim > 2.0, "past the rim the block fell only {off_rim}");
+    assert!(
+        drift < 2e-3,
+        "energy moved by {drift:.2e} of the potential energy released"
+    );
+}
+
+#[test]
+fn a_finite_wall_needs_a_positive_radius() {
+    for radius in [0.0, -1.0, f64::NAN] {
+        let mut m = block_on_floor(Vector::<2>::zeros(), Vector::<2>::zeros(), 0.0, 1.0);
+        m.effects.walls[0].radius = Some(radius);
+        match Simulation::new(m) {
+            Err(SetupError::InvalidConfig { field, message }) => {
+                assert_eq!(field, "wall");
+                assert!(message.contains("wall `floor`: radius"), "{message}");
+            }
+            other => panic!("radius {radius}: expected a wall error, got {other:?}"),
+        }
+    }
+}
