@@ -4,6 +4,7 @@
 use crate::geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape};
 use crate::scene_file::{
     BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
+    StressGradients,
 };
 use std::fmt;
 use std::ops::Range;
@@ -520,10 +521,17 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             ));
         }
         if stress_update == StressUpdate::GreenLagrange {
-            if let Some(t) = &b.initial_stress {
+            let given = (b
+                .initial_stress
+                .as_ref()
+                .map(|t| ("initial_stress", t.span())))
+            .or_else(|| {
+                (b.initial_stress_gradient.as_ref()).map(|t| ("initial_stress_gradient", t.span()))
+            });
+            if let Some((key, span)) = given {
                 return Err(ctx.error(
-                    &t.span(),
-                    &format!("body[{}].initial_stress", body.name),
+                    &span,
+                    &format!("body[{}].{key}", body.name),
                     "needs stress_update = \"jaumann-rate\" (the Green-Lagrange path computes stress from F alone)".into(),
                 ));
             }
@@ -1474,6 +1482,17 @@ fn build_body<const D: usize>(
         )?),
         None => None,
     };
+    let initial_stress_gradient = match &b.initial_stress_gradient {
+        Some(t) => Some(initial_stress_gradient::<D>(
+            ctx,
+            t,
+            &field("initial_stress_gradient"),
+            &materials[material],
+            initial_stress.unwrap_or_else(tlsph_math::Tensor3::zeros),
+            &positions,
+        )?),
+        None => None,
+    };
     Ok(BodyDescription {
         name: name.clone(),
         material,
@@ -1482,6 +1501,7 @@ fn build_body<const D: usize>(
         positions,
         velocities,
         initial_stress,
+        initial_stress_gradient,
     })
 }
 
@@ -1496,42 +1516,13 @@ fn initial_stress<const D: usize>(
 ) -> Result<tlsph_math::Tensor3, SceneError> {
     let c = table.get_ref();
     let span = table.span();
-    let allowed_shear = |present: bool, needs: usize, name: &str| {
-        if present && D < needs {
-            Err(ctx.error(
-                &span,
-                field,
-                format!("`{name}` is not a stress component of a {D}D scene (1D: xx, yy, zz; 2D: also xy)"),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    allowed_shear(c.xy.is_some(), 2, "xy")?;
-    allowed_shear(c.yz.is_some(), 3, "yz")?;
-    allowed_shear(c.xz.is_some(), 3, "xz")?;
-    let v = |x: Option<f64>| x.unwrap_or(0.0);
-    let (xx, yy, zz, xy, yz, xz) = (v(c.xx), v(c.yy), v(c.zz), v(c.xy), v(c.yz), v(c.xz));
+    let components = [c.xx, c.yy, c.zz, c.xy, c.yz, c.xz];
+    stress_components_allowed::<D>(ctx, &span, field, &components.map(|x| x.is_some()))?;
+    let [xx, yy, zz, xy, yz, xz] = components.map(|x| x.unwrap_or(0.0));
     if ![xx, yy, zz, xy, yz, xz].iter().all(|x| x.is_finite()) {
         return Err(ctx.error(&span, field, "components must be finite numbers".into()));
     }
-    let state_stress = match &material.model {
-        MaterialModel::ElasticPlastic(m) => {
-            matches!(m.pressure, PressureModel::Eos(_)) || m.damage.is_some()
-        }
-        MaterialModel::ElasticDamage(_) => true,
-        MaterialModel::LinearElastic(_) => false,
-    };
-    if state_stress {
-        return Err(ctx.error(
-            &span,
-            field,
-            format!(
-                "material `{}` computes its stress from the current state (an equation of state or a damage model), so an initial stress would be lost",
-                material.name
-            ),
-        ));
-    }
+    stress_is_not_state(ctx, &span, field, material)?;
     let stress = tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
     if let Some((equivalent, yield_stress)) = material.model.outside_initial_yield_surface(&stress)
     {
@@ -1545,6 +1536,118 @@ fn initial_stress<const D: usize>(
         ));
     }
     Ok(stress)
+}
+
+/// G_k = ∂σ/∂X_k of `initial_stress_gradient` (each component an array of D finite
+/// derivatives, the components allowed as for `initial_stress`). With the stress `at_origin`
+/// σ0 every particle's σ0 + Σ_k X_k G_k must lie on or inside the initial yield surface; the
+/// error names the first that does not.
+fn initial_stress_gradient<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<StressGradients>,
+    field: &str,
+    material: &MaterialDescription,
+    at_origin: tlsph_math::Tensor3,
+    positions: &[Vector<D>],
+) -> Result<[tlsph_math::Tensor3; D], SceneError> {
+    let c = table.get_ref();
+    let span = table.span();
+    let components = [&c.xx, &c.yy, &c.zz, &c.xy, &c.yz, &c.xz];
+    stress_components_allowed::<D>(ctx, &span, field, &components.map(|x| x.is_some()))?;
+    let mut slopes = [[0.0; 6]; D];
+    for (index, (name, values)) in ["xx", "yy", "zz", "xy", "yz", "xz"]
+        .iter()
+        .zip(components)
+        .enumerate()
+    {
+        let Some(values) = values else { continue };
+        if values.len() != D || !values.iter().all(|x| x.is_finite()) {
+            return Err(ctx.error(
+                &span,
+                field,
+                format!(
+                    "`{name}` must be {D} finite numbers (its derivatives along {}), got {values:?}",
+                    ["x", "y", "z"][..D].join(", ")
+                ),
+            ));
+        }
+        for (k, value) in values.iter().enumerate() {
+            slopes[k][index] = *value;
+        }
+    }
+    stress_is_not_state(ctx, &span, field, material)?;
+    let gradient = slopes.map(|[xx, yy, zz, xy, yz, xz]| {
+        tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+    });
+    for x in positions {
+        let stress = tlsph_solver::linear_stress_at(at_origin, &gradient, x);
+        if let Some((equivalent, yield_stress)) =
+            material.model.outside_initial_yield_surface(&stress)
+        {
+            return Err(ctx.error(
+                &span,
+                field,
+                format!(
+                    "takes the particle at [{}] outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa",
+                    point_text(x),
+                    material.name
+                ),
+            ));
+        }
+    }
+    Ok(gradient)
+}
+
+/// Which stress components a D-dimensional scene may set (`given`: xx, yy, zz, xy, yz, xz):
+/// in 1D only the normal ones (uniaxial strain), in 2D no out-of-plane shear (plane strain).
+fn stress_components_allowed<const D: usize>(
+    ctx: &Context<'_>,
+    span: &Range<usize>,
+    field: &str,
+    given: &[bool; 6],
+) -> Result<(), SceneError> {
+    for (present, needs, name) in [
+        (given[3], 2, "xy"),
+        (given[4], 3, "yz"),
+        (given[5], 3, "xz"),
+    ] {
+        if present && D < needs {
+            return Err(ctx.error(
+                span,
+                field,
+                format!("`{name}` is not a stress component of a {D}D scene (1D: xx, yy, zz; 2D: also xy)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses an initial stress for a material whose stress is a function of the current state
+/// (an equation of state, or a damage model's effective stress): it would be lost.
+fn stress_is_not_state(
+    ctx: &Context<'_>,
+    span: &Range<usize>,
+    field: &str,
+    material: &MaterialDescription,
+) -> Result<(), SceneError> {
+    let state_stress = match &material.model {
+        MaterialModel::ElasticPlastic(m) => {
+            matches!(m.pressure, PressureModel::Eos(_)) || m.damage.is_some()
+        }
+        MaterialModel::ElasticDamage(_) => true,
+        MaterialModel::LinearElastic(_) => false,
+    };
+    if state_stress {
+        return Err(ctx.error(
+            span,
+            field,
+            format!(
+                "material `{}` computes its stress from the current state (an equation of state or a damage model), so an initial stress would be lost",
+                material.name
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// One filled shape of a body: the region its particles came from (its shape, within its

@@ -268,8 +268,23 @@ pub(crate) struct BodyTable {
     /// Holes and notches: `[[body.cut]]` tables whose lattice points are removed.
     #[serde(default)]
     pub cut: Vec<CutTable>,
-    /// Uniform initial Cauchy stress.
+    /// Uniform initial Cauchy stress (its value at the origin with a gradient).
     pub initial_stress: Option<Spanned<StressComponents>>,
+    /// Gradient of the initial stress: per component, its derivatives along x, y, z.
+    pub initial_stress_gradient: Option<Spanned<StressGradients>>,
+}
+
+/// `initial_stress_gradient = { yy = [0.0, 7.7e4], ... }`: per stress component its D
+/// derivatives ∂σ/∂X_k, absent = 0.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct StressGradients {
+    pub xx: Option<Vec<f64>>,
+    pub yy: Option<Vec<f64>>,
+    pub zz: Option<Vec<f64>>,
+    pub xy: Option<Vec<f64>>,
+    pub yz: Option<Vec<f64>>,
+    pub xz: Option<Vec<f64>>,
 }
 
 /// `initial_stress = { xx = .., yy = .., ... }`: components of a symmetric stress, absent = 0.

@@ -95,6 +95,7 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
             positions,
             velocities,
             initial_stress: None,
+            initial_stress_gradient: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

@@ -50,6 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             positions,
             velocities,
             initial_stress: None,
+            initial_stress_gradient: None,
         }],
         // Clamp: particle 0 (X = 0) held at zero velocity.
         boundaries: vec![BoundaryDescription {

@@ -33,13 +33,13 @@ pub use error::{LimitingParticle, SetupError, StepError};
 pub use fields::ParticleField;
 pub use ghosts::MIN_PLANE_DISTANCE;
 pub use model::{
-    Amplitude, AmplitudeTable, ArtificialStress, BodyDescription, BodyForceDescription,
-    BoundaryDescription, BulkViscosity, ContactDescription, DamageModel, EffectsDescription,
-    ElasticDamage, ElasticPlastic, FailureModel, Formulation, FrictionCoefficients,
-    InitialTimeStep, MaterialDescription, MaterialModel, Model, PenaltyContactDescription,
-    PressureModel, RampShape, ReferenceSupport, ReferenceUpdate, SimulationConfig, StrengthModel,
-    StressUpdate, SymmetryPlane, TableShape, Thermal, VelocityRamp, WallDescription, WallMotion,
-    INITIAL_YIELD_TOLERANCE,
+    linear_stress_at, Amplitude, AmplitudeTable, ArtificialStress, BodyDescription,
+    BodyForceDescription, BoundaryDescription, BulkViscosity, ContactDescription, DamageModel,
+    EffectsDescription, ElasticDamage, ElasticPlastic, FailureModel, Formulation,
+    FrictionCoefficients, InitialTimeStep, MaterialDescription, MaterialModel, Model,
+    PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
+    SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, TableShape, Thermal,
+    VelocityRamp, WallDescription, WallMotion, INITIAL_YIELD_TOLERANCE,
 };
 pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

@@ -353,6 +353,22 @@ pub struct BodyDescription<const D: usize> {
     /// e.g. a prestressed part; carried on by the rate-form (Jaumann) stress updates. See
     /// [`crate::Simulation::set_initial_stress`] for what refuses it.
     pub initial_stress: Option<tlsph_math::Tensor3>,
+    /// Its gradient: the initial stress of the particle at X is σ0 + Σ_k X_k G_k, with
+    /// G_k = ∂σ/∂X_k (symmetric) and σ0 = `initial_stress` (zero when absent), e.g. a stress
+    /// in equilibrium with a body force. `None`: uniform.
+    pub initial_stress_gradient: Option<[tlsph_math::Tensor3; D]>,
+}
+
+/// The linear initial stress σ0 + Σ_k X_k G_k at reference position `x` (σ0 and the
+/// G_k = ∂σ/∂X_k as in [`BodyDescription::initial_stress_gradient`]).
+pub fn linear_stress_at<const D: usize>(
+    at_origin: tlsph_math::Tensor3,
+    gradient: &[tlsph_math::Tensor3; D],
+    x: &Vector<D>,
+) -> tlsph_math::Tensor3 {
+    x.iter()
+        .zip(gradient)
+        .fold(at_origin, |sigma, (x_k, g_k)| sigma + g_k * *x_k)
 }
 
 /// Prescribed velocity on a set of particles of one body (numerics.md §13.2).

@@ -457,8 +457,15 @@ impl<const D: usize> Simulation<D> {
             next_dt: 0.0,
         };
         for (b, body) in model.bodies.iter().enumerate() {
-            if let Some(stress) = body.initial_stress {
-                sim.set_initial_stress(b, stress)?;
+            match (body.initial_stress, body.initial_stress_gradient) {
+                (None, None) => {}
+                (Some(stress), None) => sim.set_initial_stress(b, stress)?,
+                (uniform, Some(gradient)) => {
+                    let at_origin = uniform.unwrap_or_else(tlsph_math::Tensor3::zeros);
+                    sim.set_initial_stress_field(b, |x| {
+                        crate::model::linear_stress_at(at_origin, &gradient, x)
+                    })?;
+                }
             }
         }
         sim.announce_reference_ghosts();
@@ -1317,6 +1324,19 @@ impl<const D: usize> Simulation<D> {
         body: usize,
         stress: tlsph_math::Tensor3,
     ) -> Result<(), SetupError> {
+        self.set_initial_stress_field(body, |_| stress)
+    }
+
+    /// Sets an initial Cauchy stress σ0(X) that varies over body `body`: particle by particle,
+    /// `field` of its reference position X, e.g. the linear field in equilibrium with a body
+    /// force (σ_yy = ρ g (y − H) for a column of height H under gravity g). The same conditions
+    /// as [`Simulation::set_initial_stress`] hold at every particle; an error names the first
+    /// particle that breaks them.
+    pub fn set_initial_stress_field(
+        &mut self,
+        body: usize,
+        field: impl Fn(&Vector<D>) -> tlsph_math::Tensor3,
+    ) -> Result<(), SetupError> {
         let refuse = |message: String| {
             Err(SetupError::InvalidConfig {
                 field: "initial_stress",
@@ -1329,12 +1349,6 @@ impl<const D: usize> Simulation<D> {
         if self.steps_done > 0 {
             return refuse("must be set before the first step".into());
         }
-        if !(stress.iter().all(|x| x.is_finite()) && (stress - stress.transpose()).norm() == 0.0) {
-            return refuse(format!(
-                "body `{}`: stress must be finite and symmetric",
-                info.name
-            ));
-        }
         let material = &self.materials[info.material];
         let stress_from_state = self.config.stress_update == StressUpdate::GreenLagrange
             || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)))
@@ -1345,16 +1359,39 @@ impl<const D: usize> Simulation<D> {
                 info.name
             ));
         }
-        if let Some((equivalent, yield_stress)) = material.outside_initial_yield_surface(&stress) {
-            return refuse(format!(
-                "body `{}`: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
-                info.name
-            ));
-        }
         let range = info.range.clone();
-        self.particles.stress[range.clone()].fill(stress);
-        // P = J σ F⁻ᵀ = σ at the reference state (F = I).
-        self.particles.pk1[range].fill(tlsph_math::project(&stress));
+        let stresses: Vec<tlsph_math::Tensor3> = self.particles.positions0[range.clone()]
+            .iter()
+            .map(&field)
+            .collect();
+        for (k, stress) in stresses.iter().enumerate() {
+            let at = || {
+                let x = self.particles.positions0[range.start + k];
+                let text: Vec<String> = x.iter().map(|c| format!("{c:e}")).collect();
+                format!(
+                    "body `{}`, particle {k} at [{}]",
+                    info.name,
+                    text.join(", ")
+                )
+            };
+            if !(stress.iter().all(|x| x.is_finite())
+                && (stress - stress.transpose()).norm() == 0.0)
+            {
+                return refuse(format!("{}: stress must be finite and symmetric", at()));
+            }
+            if let Some((equivalent, yield_stress)) = material.outside_initial_yield_surface(stress)
+            {
+                return refuse(format!(
+                    "{}: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
+                    at()
+                ));
+            }
+        }
+        for (i, stress) in range.zip(stresses) {
+            self.particles.stress[i] = stress;
+            // P = J σ F⁻ᵀ = σ at the reference state (F = I).
+            self.particles.pk1[i] = tlsph_math::project(&stress);
+        }
         self.ghosts.refresh_stress(&mut self.particles);
         Ok(())
     }
@@ -2580,6 +2617,7 @@ mod penalty_contact_tests {
             velocities: vec![Vector::zeros(); positions.len()],
             positions,
             initial_stress: None,
+            initial_stress_gradient: None,
         }
     }
 
@@ -2727,6 +2765,7 @@ mod time_step_tests {
                 velocities: vec![Vector::zeros(); n],
                 positions: positions.clone(),
                 initial_stress: None,
+                initial_stress_gradient: None,
             }],
             boundaries: vec![],
             effects: Default::default(),

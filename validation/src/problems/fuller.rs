@@ -77,6 +77,7 @@ pub fn model(
             volumes,
             velocities: vec![Vector::<2>::zeros(); n],
             initial_stress: None,
+            initial_stress_gradient: None,
             positions,
         }],
         boundaries: loads

@@ -601,6 +601,73 @@ fn initial_stress_errors_name_the_field_and_line() {
 }
 
 #[test]
+fn an_initial_stress_gradient_is_read_and_checked_with_field_and_line() {
+    // The 1D bar (X from 0 to 2): σ_xx = 1e-3 + 2e-3 X, σ_yy = −1e-3 X.
+    let gradient = "initial_stress_gradient = { xx = [2e-3], yy = [-1e-3] }";
+    let with = |extra: &str| {
+        PLATE_IMPACT.replace(
+            "spacing = 0.01",
+            &format!(
+                "spacing = 0.01
+initial_stress = {{ xx = 1e-3 }}
+{extra}"
+            ),
+        )
+    };
+    let scene = parse_scene(&with(gradient), "scene.toml").unwrap();
+    let DimensionModel::One(m) = &scene.model else {
+        unreachable!()
+    };
+    let [g] = m.bodies[0].initial_stress_gradient.unwrap();
+    assert_eq!((g[(0, 0)], g[(1, 1)], g[(2, 2)]), (2e-3, -1e-3, 0.0));
+    // The run starts with the field: the particle at X has σ_xx = 1e-3 + 2e-3 X.
+    let mut sim = tlsph_solver::Simulation::new(m.clone()).unwrap();
+    for i in 0..sim.n_particles() {
+        let x = sim.positions0()[i].x;
+        let expected = 1e-3 + 2e-3 * x;
+        assert!((sim.stresses()[i][(0, 0)] - expected).abs() < 1e-15, "{x}");
+        assert!((sim.stresses()[i][(1, 1)] + 1e-3 * x).abs() < 1e-15, "{x}");
+    }
+    sim.step().unwrap();
+    // Errors, at the key's line.
+    for (bad, message) in [
+        (
+            "initial_stress_gradient = { xx = [1.0, 2.0] }",
+            "1 finite numbers",
+        ),
+        ("initial_stress_gradient = { xy = [1.0] }", "`xy`"),
+        ("initial_stress_gradient = { shear = [1.0] }", "shear"),
+    ] {
+        let text = with(bad);
+        let e = error_of(&text);
+        assert_eq!(e.line, Some(line_of(&text, bad)), "{bad}: {e}");
+        assert!(e.message.contains(message), "{bad}: {e}");
+    }
+    // Elastic–plastic with σ_y0 = 0.01: 1e-3 + 5e-3 X leaves the surface at X = 1.8.
+    let plastic = with("initial_stress_gradient = { xx = [5e-3] }").replace(
+        "model = \"linear-elastic\"",
+        "model = \"elastic-plastic\"\nyield_stress = 0.01",
+    );
+    let e = error_of(&plastic);
+    assert_eq!(e.field, "body[target].initial_stress_gradient", "{e}");
+    assert!(
+        e.message.contains("takes the particle at [1.8") && e.message.contains("yield surface"),
+        "{e}"
+    );
+    // The Green–Lagrange path refuses it as it refuses a uniform one.
+    let gl = PLATE_IMPACT
+        .replace(
+            "spacing = 0.01",
+            &format!(
+                "spacing = 0.01
+{gradient}"
+            ),
+        )
+        .replace("cfl = 0.3", "cfl = 0.3\nstress_update = \"green-lagrange\"");
+    assert_eq!(error_of(&gl).field, "body[target].initial_stress_gradient");
+}
+
+#[test]
 fn reference_update_is_read_and_checked_with_field_and_line() {
     let ok = format!("{PLATE_IMPACT}\n[reference_update]\nstrain_threshold = 0.1\n");
     match parse_scene(&ok, "scene.toml").unwrap().model {

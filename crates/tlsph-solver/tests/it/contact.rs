@@ -42,6 +42,7 @@ pub(super) fn body<const D: usize>(
         velocities: vec![velocity; positions.len()],
         positions,
         initial_stress: None,
+        initial_stress_gradient: None,
     }
 }
 

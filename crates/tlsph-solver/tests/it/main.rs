@@ -88,6 +88,7 @@ fn model<const D: usize>(
             volumes: vec![dx.powi(D as i32); positions.len()],
             velocities: positions.iter().map(&velocity).collect(),
             initial_stress: None,
+            initial_stress_gradient: None,
             positions,
         }],
         boundaries: vec![],

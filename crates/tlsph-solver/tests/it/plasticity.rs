@@ -343,6 +343,25 @@ fn a_starting_stress_outside_the_yield_surface_is_refused() {
     assert!(build()
         .set_initial_stress(0, Tensor3::identity() * -1e9)
         .is_ok());
+    // A field that rises along x past 90 MPa: refused at the first particle beyond it, named.
+    let x_max = build()
+        .positions0()
+        .iter()
+        .map(|x| x.x)
+        .fold(f64::MIN, f64::max);
+    let rising = |x: &tlsph_math::Vector<2>| uniaxial(95e6 * x.x / x_max);
+    let error = build().set_initial_stress_field(0, rising).unwrap_err();
+    let text = error.to_string();
+    assert!(
+        text.contains("yield surface") && text.contains("particle") && text.contains(" at ["),
+        "{text}"
+    );
+    let within = |x: &tlsph_math::Vector<2>| uniaxial(85e6 * x.x / x_max);
+    let mut sim = build();
+    sim.set_initial_stress_field(0, within).unwrap();
+    let last = sim.n_particles() - 1;
+    let expected = 85e6 * sim.positions0()[last].x / x_max;
+    assert_eq!(sim.stresses()[last][(0, 0)], expected);
 }
 
 #[test]
