@@ -184,6 +184,54 @@ impl<const D: usize> WallGeometry<D> for FlatDisc<D> {
     }
 }
 
+/// A rigid ball (ours, not in the theses): the sphere of radius R about `centre` (a disc in
+/// 2D: a cylinder in plane strain), e.g. a spherical indenter. A particle touches it when its
+/// contact sphere reaches the ball's surface, δ = Δx/2 + R − |x − centre|, and is pushed
+/// radially outwards; the push is the gradient of the spring's ½ k δ².
+#[derive(Debug, Clone)]
+pub struct RigidBall<const D: usize> {
+    centre: Vector<D>,
+    /// R \[m\].
+    radius: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> RigidBall<D> {
+    /// The ball of radius `radius` about `centre`, for particles with smoothing lengths `h`,
+    /// sound speeds `c0` and spacings `dx` (one entry per particle).
+    pub fn new(centre: Vector<D>, radius: f64, h: &[f64], c0: &[f64], dx: &[f64]) -> Self {
+        Self {
+            centre,
+            radius,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+}
+
+impl<const D: usize> WallGeometry<D> for RigidBall<D> {
+    /// δ = Δx/2 + R − |x − centre|, pushed along (x − centre)/|x − centre| (along the last
+    /// axis for a particle exactly at the centre).
+    #[inline]
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+        let offset = x - self.centre;
+        let distance = offset.norm();
+        let delta = (self.springs.radius[i] + self.radius - distance).max(0.0);
+        let direction = if distance > 0.0 {
+            offset / distance
+        } else {
+            let mut last = Vector::<D>::zeros();
+            last[D - 1] = 1.0;
+            last
+        };
+        (delta, direction)
+    }
+
+    #[inline]
+    fn stiffness_per_mass(&self, i: usize) -> f64 {
+        self.springs.stiffness_per_mass[i]
+    }
+}
+
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
 /// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).

@@ -17,7 +17,7 @@ use tlsph_solver::{
     BoundaryDescription, BulkViscosity, ContactDescription, EffectsDescription, Formulation,
     FrictionCoefficients, MaterialDescription, MaterialModel, Model, ParticleField,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, SimulationConfig,
-    StressUpdate, SymmetryPlane, TableShape, VelocityRamp, WallDescription, WallMotion,
+    StressUpdate, SymmetryPlane, TableShape, VelocityRamp, WallDescription, WallMotion, WallShape,
 };
 use toml::Spanned;
 
@@ -648,53 +648,131 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             ));
         }
         let point = ctx.vector::<D>(&w.point, &format!("wall[{name}].point"))?;
-        let normal = ctx.vector::<D>(&w.normal, &format!("wall[{name}].normal"))?;
-        if normal.norm() == 0.0 {
-            return Err(ctx.error(
-                &w.normal.span(),
-                &format!("wall[{name}].normal"),
-                "must not be zero".into(),
-            ));
+        let key = |k: &str| format!("wall[{name}].{k}");
+        #[derive(Clone, Copy, PartialEq)]
+        enum Kind {
+            Plane,
+            Disc,
+            Ball,
         }
-        let unit = normal / normal.norm();
-        let radius = match &w.radius {
-            None => None,
-            Some(r) if D < 2 => {
+        let default_kind = if w.radius.is_some() {
+            Kind::Disc
+        } else {
+            Kind::Plane
+        };
+        let kind = ctx.keyword(
+            w.shape.as_ref(),
+            &key("shape"),
+            "wall shape",
+            default_kind,
+            &[
+                ("plane", Kind::Plane),
+                ("disc", Kind::Disc),
+                ("ball", Kind::Ball),
+            ],
+        )?;
+        let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
+        let radius = match (&w.radius, kind) {
+            (None, Kind::Plane) => None,
+            (Some(r), Kind::Plane) => {
                 return Err(ctx.error(
                     &r.span(),
-                    &format!("wall[{name}].radius"),
+                    &key("radius"),
+                    "a plane wall has no radius (shape = \"disc\" or \"ball\" has)".into(),
+                ))
+            }
+            (None, _) => {
+                return Err(ctx.error(
+                    &shape_span,
+                    &key("radius"),
+                    "is required by a disc or ball wall".into(),
+                ))
+            }
+            (Some(r), _) if D < 2 => {
+                return Err(ctx.error(
+                    &r.span(),
+                    &key("radius"),
                     "a 1D wall is a point; a finite wall needs a 2D or 3D scene".into(),
                 ))
             }
-            Some(r) => Some(ctx.positive(r, &format!("wall[{name}].radius"))?),
+            (Some(r), _) => Some(ctx.positive(r, &key("radius"))?),
         };
-        // Of a finite wall only what lies in front of or behind its face can be on the wrong
-        // side; beyond its rim a body may be anywhere.
-        let in_footprint = |x: &Vector<D>| {
-            radius.is_none_or(|r| {
-                let offset = x - point;
-                (offset - unit * offset.dot(&unit)).norm() <= r
-            })
-        };
-        for body in &bodies {
-            let behind = body
-                .positions
-                .iter()
-                .filter(|x| in_footprint(x))
-                .map(|x| (x, (x - point).dot(&unit)))
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
-                let face = if radius.is_some() { "disc" } else { "plane" };
+        // A ball has no normal; the others need one. The ball's stands in as the last axis.
+        let normal = match (&w.normal, kind) {
+            (Some(n), Kind::Ball) => {
                 return Err(ctx.error(
-                    &w.point.span(),
-                    &format!("wall[{name}].point"),
-                    format!(
-                        "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the {face} (particles must start on the side the normal points to)",
-                        body.name,
-                        point_text(x),
-                        -d
-                    ),
-                ));
+                    &n.span(),
+                    &key("normal"),
+                    "a ball wall has no normal (it pushes radially from `point`, its centre)"
+                        .into(),
+                ))
+            }
+            (None, Kind::Ball) => {
+                let mut last = Vector::<D>::zeros();
+                last[D - 1] = 1.0;
+                last
+            }
+            (None, _) => {
+                return Err(ctx.error(
+                    &w.name.span(),
+                    &key("normal"),
+                    "is required by a plane or disc wall".into(),
+                ))
+            }
+            (Some(n), _) => {
+                let normal = ctx.vector::<D>(n, &key("normal"))?;
+                if normal.norm() == 0.0 {
+                    return Err(ctx.error(&n.span(), &key("normal"), "must not be zero".into()));
+                }
+                normal
+            }
+        };
+        let unit = normal / normal.norm();
+        if kind == Kind::Ball {
+            let r = radius.unwrap_or(0.0);
+            for body in &bodies {
+                if let Some(x) = body.positions.iter().find(|x| (*x - point).norm() < r) {
+                    return Err(ctx.error(
+                        &w.point.span(),
+                        &key("point"),
+                        format!(
+                            "body `{}` starts inside the ball: its particle at [{}] is {:.3e} from the centre, less than the radius {r:e}",
+                            body.name,
+                            point_text(x),
+                            (x - point).norm()
+                        ),
+                    ));
+                }
+            }
+        } else {
+            // Of a finite wall only what lies in front of or behind its face can be on the
+            // wrong side; beyond its rim a body may be anywhere.
+            let in_footprint = |x: &Vector<D>| {
+                radius.is_none_or(|r| {
+                    let offset = x - point;
+                    (offset - unit * offset.dot(&unit)).norm() <= r
+                })
+            };
+            for body in &bodies {
+                let behind = body
+                    .positions
+                    .iter()
+                    .filter(|x| in_footprint(x))
+                    .map(|x| (x, (x - point).dot(&unit)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1));
+                if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
+                    let face = if radius.is_some() { "disc" } else { "plane" };
+                    return Err(ctx.error(
+                        &w.point.span(),
+                        &key("point"),
+                        format!(
+                            "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the {face} (particles must start on the side the normal points to)",
+                            body.name,
+                            point_text(x),
+                            -d
+                        ),
+                    ));
+                }
             }
         }
         let friction = ctx.friction_coefficients(
@@ -718,9 +796,15 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 // slide the other way in the mirrored half: with friction, not a symmetric
                 // model (frictionless, the sliding is not felt; a wall across the normal is
                 // mirrored into a second wall, moving as its mirror image).
+                // (A disc or ball is mirrored into a second one unless it crosses the plane,
+                // which the check on `radius` below handles.)
                 let sliding_across_a_mirror = file.symmetry_plane.iter().find(|p| {
                     axis_index(p.axis.get_ref()).is_some_and(|a| {
-                        a < D && unit[a] == 0.0 && velocity[a] != 0.0 && friction.is_frictional()
+                        kind == Kind::Plane
+                            && a < D
+                            && unit[a] == 0.0
+                            && velocity[a] != 0.0
+                            && friction.is_frictional()
                     })
                 });
                 if let Some(plane) = sliding_across_a_mirror {
@@ -752,38 +836,44 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
             }
         };
         if let (Some(r), Some(span)) = (radius, w.radius.as_ref().map(|r| r.span())) {
-            // The mirrored half of the model meets the disc's mirror image. A disc crossing a
-            // symmetry plane must be centred on it and stay so, or the two would overlap into
-            // another shape.
+            // The mirrored half of the model meets the wall's mirror image. A disc or ball
+            // crossing a symmetry plane must be centred on it and stay so, or the two would
+            // overlap into another shape. (A disc only crosses planes its face lies across.)
             let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
             let asymmetric = file.symmetry_plane.iter().find(|p| {
                 let position = *p.position.get_ref();
                 axis_index(p.axis.get_ref()).is_some_and(|a| {
                     a < D
-                        && unit[a] == 0.0
+                        && (kind == Kind::Ball || unit[a] == 0.0)
                         && (point[a] - position).abs() < r
                         && (point[a] != position || sliding(a))
                 })
             });
             if let Some(plane) = asymmetric {
+                let what = if kind == Kind::Ball { "ball" } else { "disc" };
                 return Err(ctx.error(
                     &span,
-                    &format!("wall[{name}].radius"),
+                    &key("radius"),
                     format!(
-                        "the disc crosses the symmetry plane {} = {} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the disc on the plane and move it along the plane's normal only, or keep it clear of the plane",
+                        "the {what} crosses the symmetry plane {} = {} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the {what} on the plane and move it along the plane only, or keep it clear of the plane",
                         plane.axis.get_ref(),
                         plane.position.get_ref()
                     ),
                 ));
             }
         }
+        let shape = match (kind, radius) {
+            (Kind::Disc, Some(radius)) => WallShape::Disc { radius },
+            (Kind::Ball, Some(radius)) => WallShape::Ball { radius },
+            _ => WallShape::Plane,
+        };
         effects.walls.push(WallDescription {
             name,
             point,
             normal,
             friction,
             motion,
-            radius,
+            shape,
         });
     }
     for plane in &file.symmetry_plane {

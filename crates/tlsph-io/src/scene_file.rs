@@ -123,14 +123,15 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid plane, or a disc of `radius`, frictionless unless `friction` is
+/// `[[wall]]`: a rigid plane, or a disc or ball of `radius`, frictionless unless `friction` is
 /// given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
     pub name: Spanned<String>,
     pub point: Spanned<Vec<f64>>,
-    pub normal: Spanned<Vec<f64>>,
+    /// Required except for a ball.
+    pub normal: Option<Spanned<Vec<f64>>>,
     pub friction: Option<Spanned<f64>>,
     pub static_friction: Option<Spanned<f64>>,
     pub friction_decay: Option<Spanned<f64>>,
@@ -139,7 +140,9 @@ pub(crate) struct WallTable {
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
     pub amplitude_shape: Option<Spanned<String>>,
-    /// Finite size: the disc (segment in 2D) of this radius about `point`.
+    /// "plane" (default), "disc" (the default with `radius`) or "ball".
+    pub shape: Option<Spanned<String>>,
+    /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`.
     pub radius: Option<Spanned<f64>>,
 }
 

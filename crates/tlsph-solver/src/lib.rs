@@ -39,7 +39,7 @@ pub use model::{
     FrictionCoefficients, InitialTimeStep, MaterialDescription, MaterialModel, Model,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, ReferenceUpdate,
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, TableShape, Thermal,
-    VelocityRamp, WallDescription, WallMotion, INITIAL_YIELD_TOLERANCE,
+    VelocityRamp, WallDescription, WallMotion, WallShape, INITIAL_YIELD_TOLERANCE,
 };
 pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
 pub use tlsph_kernels::KernelKind;

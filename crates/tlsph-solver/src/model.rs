@@ -663,10 +663,27 @@ pub struct WallDescription<const D: usize> {
     pub friction: FrictionCoefficients,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
-    /// Finite size (2D and 3D): the wall is the disc of this radius about `point` (the
-    /// segment of this half-length in 2D), a plate with a rounded rim
-    /// (`tlsph_contact::FlatDisc`) \[m\]; `None`: the unbounded plane.
-    pub radius: Option<f64>,
+    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc or a ball.
+    pub shape: WallShape,
+}
+
+/// The shape of a rigid wall (ours, not in the theses; numerics.md §13 `[C]` law on each).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WallShape {
+    /// The unbounded plane through `point` normal to `normal` (`tlsph_contact::RigidPlane`).
+    Plane,
+    /// The disc of this radius about `point` in that plane (the segment of this half-length in
+    /// 2D), a plate with a rounded rim: a flat punch, a ledge (`tlsph_contact::FlatDisc`) \[m\].
+    Disc {
+        /// R \[m\].
+        radius: f64,
+    },
+    /// The ball of this radius centred at `point` (a disc in 2D: a cylinder in plane strain),
+    /// e.g. a spherical indenter (`tlsph_contact::RigidBall`); `normal` is not used.
+    Ball {
+        /// R \[m\].
+        radius: f64,
+    },
 }
 
 /// Translation of a rigid wall at a prescribed velocity (a platen, a piston, a conveyor

@@ -11,7 +11,7 @@ use crate::effects::{
 use crate::error::{LimitingParticle, SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::ghosts::{check_planes, reflections, Ghosts};
-use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate};
+use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, WallShape};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticBody, PlasticState};
 use crate::prescribed::{Drivers, PrescribedSet};
@@ -25,7 +25,7 @@ use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_contact::{
-    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidPlane, WallGeometry,
+    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidPlane, WallGeometry,
 };
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
@@ -1966,13 +1966,11 @@ fn build_effects<const D: usize>(
         )?)));
     }
     for wall in &model.effects.walls {
-        if !(wall.normal.norm() > 0.0
-            && wall
-                .normal
-                .iter()
-                .chain(wall.point.iter())
-                .all(|x| x.is_finite()))
-        {
+        // A ball has no normal.
+        let needs_normal = !matches!(wall.shape, WallShape::Ball { .. });
+        let normal_ok = !needs_normal
+            || (wall.normal.norm() > 0.0 && wall.normal.iter().all(|x| x.is_finite()));
+        if !(normal_ok && wall.point.iter().all(|x| x.is_finite())) {
             return Err(SetupError::InvalidConfig {
                 field: "wall",
                 message: format!(
@@ -1999,25 +1997,40 @@ fn build_effects<const D: usize>(
             }
         }
         let (point, normal, motion) = (wall.point, wall.normal, wall.motion.clone());
-        match wall.radius {
-            None => {
+        let checked_radius = |radius: f64| {
+            if D < 2 || !(radius.is_finite() && radius > 0.0) {
+                Err(wall_error(format!(
+                    "radius must be finite and > 0 in a 2D or 3D scene, got {radius} in {D}D"
+                )))
+            } else {
+                Ok(radius)
+            }
+        };
+        let name = &wall.name;
+        match wall.shape {
+            WallShape::Plane => {
                 let plane = RigidPlane::new(point, normal, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
-                    RigidWall::new(&wall.name, plane, motion),
+                    RigidWall::new(name, plane, motion),
                     coefficients,
                 );
             }
-            Some(radius) => {
-                if D < 2 || !(radius.is_finite() && radius > 0.0) {
-                    return Err(wall_error(format!(
-                        "radius must be finite and > 0 in a 2D or 3D scene, got {radius} in {D}D"
-                    )));
-                }
+            WallShape::Disc { radius } => {
+                let radius = checked_radius(radius)?;
                 let disc = FlatDisc::new(point, normal, radius, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
-                    RigidWall::new(&wall.name, disc, motion),
+                    RigidWall::new(name, disc, motion),
+                    coefficients,
+                );
+            }
+            WallShape::Ball { radius } => {
+                let radius = checked_radius(radius)?;
+                let ball = RigidBall::new(point, radius, &h, &c0, &dx);
+                push_wall(
+                    &mut effects,
+                    RigidWall::new(name, ball, motion),
                     coefficients,
                 );
             }

@@ -1,10 +1,10 @@
-//! The rigid walls' penalty springs (the unbounded plane and the finite disc) and their
+//! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball) and their
 //! Coulomb friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidPlane, Vector, WallGeometry,
-    WALL_STIFFNESS_FACTOR,
+    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidPlane, Vector,
+    WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 
 #[test]
@@ -205,30 +205,19 @@ fn a_finite_wall_pushes_off_its_faces_and_around_its_rim() {
     );
 }
 
-#[test]
-fn a_finite_wall_pushes_down_the_gradient_of_its_spring_energy() {
-    // The push k δ n̂ must be −∇(½ k δ²) everywhere a particle can be, the rim included, or a
-    // particle sliding off the edge would gain or lose energy. Central differences at points
-    // in front of the face, over the rounded rim and beside it.
-    let disc = disc();
-    let energy = |x: Vector<3>| 0.5 * disc.contact(0, x).0.powi(2);
+/// The push k δ n̂ of `wall` must be −∇(½ k δ²) at every point of `points` (all touching),
+/// or a particle moving along the wall would gain or lose energy: central differences.
+fn assert_push_is_energy_gradient(wall: &impl WallGeometry<3>, points: &[(f64, f64, f64)]) {
+    let energy = |x: Vector<3>| 0.5 * wall.contact(0, x).0.powi(2);
     let eps = 1e-6;
-    let mut checked = 0;
-    for &(x, y, z) in &[
-        (0.3, 0.2, 0.35),
-        (1.99, 0.0, 0.2),
-        (2.1, 0.1, 0.2),
-        (1.5, 1.5, 0.1),
-        (2.2, -0.3, -0.15),
-        (0.0, 2.3, 0.0),
-        (-1.6, -1.3, 0.4),
-    ] {
+    for &(x, y, z) in points {
         let at = Vector::<3>::new(x, y, z);
-        let (delta, n) = disc.contact(0, at);
+        let (delta, n) = wall.contact(0, at);
         assert!(delta > 0.0, "({x}, {y}, {z}) must touch");
         let push = n * delta;
         for axis in 0..3 {
-            let step = Vector::<3>::ith(axis, eps);
+            let mut step = Vector::<3>::zeros();
+            step[axis] = eps;
             let slope = (energy(at + step) - energy(at - step)) / (2.0 * eps);
             assert!(
                 (push[axis] + slope).abs() < 1e-8,
@@ -237,9 +226,51 @@ fn a_finite_wall_pushes_down_the_gradient_of_its_spring_energy() {
                 -slope
             );
         }
-        checked += 1;
     }
-    assert_eq!(checked, 7);
+}
+
+#[test]
+fn a_finite_wall_pushes_down_the_gradient_of_its_spring_energy() {
+    // In front of the face, over the rounded rim and beside it.
+    assert_push_is_energy_gradient(
+        &disc(),
+        &[
+            (0.3, 0.2, 0.35),
+            (1.99, 0.0, 0.2),
+            (2.1, 0.1, 0.2),
+            (1.5, 1.5, 0.1),
+            (2.2, -0.3, -0.15),
+            (0.0, 2.3, 0.0),
+            (-1.6, -1.3, 0.4),
+        ],
+    );
+}
+
+#[test]
+fn a_ball_pushes_radially_by_the_penetration_of_its_surface() {
+    // Ball of radius 2 about (1, 0, 0), particle contact radius ½: δ = 2.5 − |x − c|.
+    let ball = RigidBall::<3>::new(Vector::<3>::new(1.0, 0.0, 0.0), 2.0, &[1.2], &[3.0], &[1.0]);
+    let (delta, n) = ball.contact(0, Vector::<3>::new(1.0, 0.0, 2.3));
+    assert_relative_eq!(delta, 0.2, max_relative = 1e-13);
+    assert_eq!(n, Vector::<3>::z());
+    let (delta, n) = ball.contact(0, Vector::<3>::new(2.2, 1.6, 0.0));
+    assert_relative_eq!(delta, 0.5, max_relative = 1e-13);
+    assert_relative_eq!(n, Vector::<3>::new(0.6, 0.8, 0.0), max_relative = 1e-14);
+    assert_eq!(ball.contact(0, Vector::<3>::new(1.0, -2.6, 0.0)).0, 0.0);
+    assert_relative_eq!(
+        ball.stiffness_per_mass(0),
+        WALL_STIFFNESS_FACTOR * 9.0 / 1.44,
+        max_relative = 1e-15
+    );
+    assert_push_is_energy_gradient(
+        &ball,
+        &[
+            (1.0, 0.0, 2.3),
+            (2.2, 1.6, 0.1),
+            (-0.4, -1.2, 1.1),
+            (1.0, 2.45, 0.0),
+        ],
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@
 
 use super::{error_of, line_of};
 use tlsph_io::parse_scene;
+use tlsph_solver::WallShape;
 
 /// Two 2D blocks of spacing 1 mm side by side along x; `GAP` is the x of the second block's
 /// left face, so its first column of particles is half a spacing further.
@@ -229,8 +230,11 @@ fn a_finite_wall_is_read_and_only_its_footprint_must_be_clear() {
     let tlsph_io::DimensionModel::Two(model) = &scene.model else {
         panic!("2D")
     };
-    assert_eq!(model.effects.walls[0].radius, None);
-    assert_eq!(model.effects.walls[1].radius, Some(2.0e-3));
+    assert_eq!(model.effects.walls[0].shape, WallShape::Plane);
+    assert_eq!(
+        model.effects.walls[1].shape,
+        WallShape::Disc { radius: 2.0e-3 }
+    );
     // Lowered into the block by 1 mm: the rows under its face start behind it...
     let sunk = text.replace("point = [5.0e-3, 10.0e-3]", "point = [5.0e-3, 9.0e-3]");
     let e = error_of(&sunk);
@@ -276,4 +280,69 @@ fn a_finite_wall_across_a_symmetry_plane_must_be_centred_on_it_and_stay() {
         assert_eq!(e.field, "wall[punch].radius", "{centre}, {vx}: {e}");
         assert!(e.message.contains("symmetry plane x = 0"), "{e}");
     }
+}
+
+#[test]
+fn a_ball_wall_is_read_and_its_keys_are_checked() {
+    // A ball of radius 4 mm resting on the left block's top face (centre 4 mm above it).
+    let ball = "\n[[wall]]\nname = \"indenter\"\nshape = \"ball\"\npoint = [5.0e-3, 14.0e-3]\nradius = 4.0e-3\nvelocity = [0.0, -1.0]\n";
+    let text = TWO_BLOCKS.replace("GAP", "10.0e-3") + ball;
+    let scene = parse_scene(&text, "blocks.toml").unwrap();
+    let tlsph_io::DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert_eq!(
+        model.effects.walls[1].shape,
+        WallShape::Ball { radius: 4.0e-3 }
+    );
+    // Lowered by 2 mm its centre region holds particles of the block: refused at `point`.
+    let sunk = text.replace("point = [5.0e-3, 14.0e-3]", "point = [5.0e-3, 12.0e-3]");
+    let e = error_of(&sunk);
+    assert_eq!(e.field, "wall[indenter].point", "{e}");
+    assert!(e.message.contains("starts inside the ball"), "{e}");
+    // A normal on a ball, no radius for it, a radius on a plane, an unknown shape.
+    for (from, to, field, fragment) in [
+        (
+            "shape = \"ball\"\n",
+            "shape = \"ball\"\nnormal = [0.0, -1.0]\n",
+            "wall[indenter].normal",
+            "has no normal",
+        ),
+        ("radius = 4.0e-3\n", "", "wall[indenter].radius", "required"),
+        (
+            "shape = \"ball\"\n",
+            "shape = \"plane\"\nnormal = [0.0, -1.0]\n",
+            "wall[indenter].radius",
+            "has no radius",
+        ),
+        (
+            "shape = \"ball\"",
+            "shape = \"cone\"",
+            "wall[indenter].shape",
+            "cone",
+        ),
+    ] {
+        let bad = text.replacen(from, to, 1);
+        assert_ne!(bad, text);
+        let e = error_of(&bad);
+        assert_eq!(e.field, field, "{to}: {e}");
+        assert!(e.message.contains(fragment), "{to}: {e}");
+    }
+    // A plane or disc needs its normal.
+    let plane = TWO_BLOCKS
+        .replace("GAP", "10.0e-3")
+        .replace("normal = [0.0, 1.0]\n", "");
+    assert_eq!(error_of(&plane).field, "wall[floor].normal");
+    // About a symmetry plane x = 0 the ball must be centred on it.
+    let half = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n"
+        + &ball.replace("point = [5.0e-3, 14.0e-3]", "point = [CX, 14.0e-3]");
+    parse_scene(&half.replace("CX", "0.0"), "half.toml").unwrap();
+    let e = error_of(&half.replace("CX", "1.0e-3"));
+    assert_eq!(e.field, "wall[indenter].radius", "{e}");
+    assert!(
+        e.message
+            .contains("the ball crosses the symmetry plane x = 0"),
+        "{e}"
+    );
 }

@@ -1,7 +1,7 @@
 //! Body force (gravity): exact free fall, the weight carried by a clamp and by a wall, energy
 //! booked so the total closes, prescribed components untouched, and set-up errors.
 
-use super::{lattice, model, Setup};
+use super::{block_held_at_its_base, lattice, model, Setup};
 use tlsph_math::{Tensor3, Vector};
 use tlsph_solver::{
     Amplitude, AmplitudeTable, BodyForceDescription, BoundaryDescription, Formulation,
@@ -172,7 +172,7 @@ fn a_block_dropped_on_a_wall_gets_the_weight_impulse_back_and_energy_closes() {
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),
         motion: None,
-        radius: None,
+        shape: tlsph_solver::WallShape::Plane,
     });
     let mut sim = Simulation::new(m).unwrap();
     let mass: f64 = sim.masses().iter().sum();
@@ -384,31 +384,10 @@ fn body_force_set_up_errors_name_the_field() {
 /// H = 1 high; ρ = 1, c = 1) standing on its held bottom row under gravity g = 0.01 down,
 /// started with the initial stress field `prestress` (or none).
 fn column_under_gravity(prestress: Option<(Tensor3, [Tensor3; 2])>, refine: usize) -> f64 {
-    let dx = 0.05 / refine as f64;
-    let positions = lattice([8 * refine, 20 * refine], dx);
-    let bottom: Vec<usize> = (0..positions.len())
-        .filter(|&i| positions[i].y < dx)
-        .collect();
     let mut m = with_gravity(
-        model(
-            positions,
-            dx,
-            |_| Vector::<2>::zeros(),
-            Setup {
-                end_time: 20.0,
-                ..Setup::default()
-            },
-        ),
+        block_held_at_its_base([8 * refine, 20 * refine], 0.05 / refine as f64, 20.0),
         Vector::<2>::new(0.0, -0.01),
     );
-    m.boundaries.push(BoundaryDescription {
-        name: "base".into(),
-        body: 0,
-        particles: bottom,
-        velocity: Vector::<2>::zeros(),
-        components: [true, true],
-        amplitude: None,
-    });
     if let Some((at_origin, gradient)) = prestress {
         m.bodies[0].initial_stress = Some(at_origin);
         m.bodies[0].initial_stress_gradient = Some(gradient);

@@ -29,7 +29,7 @@ fn an_elastic_block_bounces_off_a_wall_with_its_momentum_reversed() {
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),
         motion: None,
-        radius: None,
+        shape: tlsph_solver::WallShape::Plane,
     });
     let mut sim = Simulation::new(m).unwrap();
     let mut impulse = 0.0;

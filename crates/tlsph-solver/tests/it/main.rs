@@ -42,6 +42,33 @@ fn lattice<const D: usize>(n: [usize; D], dx: f64) -> Vec<Vector<D>> {
         .collect()
 }
 
+/// A 2D block of `n` particles at spacing `dx` (from the origin), at rest, with its bottom row
+/// held fixed by a `[[boundary]]` named "base", running to `end_time`.
+fn block_held_at_its_base(n: [usize; 2], dx: f64, end_time: f64) -> Model<2> {
+    let positions = lattice(n, dx);
+    let bottom: Vec<usize> = (0..positions.len())
+        .filter(|&i| positions[i].y < dx)
+        .collect();
+    let mut m = model(
+        positions,
+        dx,
+        |_| Vector::<2>::zeros(),
+        Setup {
+            end_time,
+            ..Setup::default()
+        },
+    );
+    m.boundaries.push(tlsph_solver::BoundaryDescription {
+        name: "base".into(),
+        body: 0,
+        particles: bottom,
+        velocity: Vector::<2>::zeros(),
+        components: [true, true],
+        amplitude: None,
+    });
+    m
+}
+
 struct Setup {
     formulation: Formulation,
     stress_update: StressUpdate,

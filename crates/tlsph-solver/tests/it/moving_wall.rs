@@ -33,7 +33,7 @@ fn piston_into_bar(speed: f64, amplitude: Option<Amplitude>, end_time: f64) -> M
             velocity: Vector::<1>::new(speed),
             amplitude,
         }),
-        radius: None,
+        shape: tlsph_solver::WallShape::Plane,
     });
     m
 }

@@ -34,7 +34,7 @@ pub(super) fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(mu),
         motion: None,
-        radius: None,
+        shape: tlsph_solver::WallShape::Plane,
     });
     m
 }
