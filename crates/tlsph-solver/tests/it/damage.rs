@@ -30,12 +30,37 @@ fn peerlings_uniaxial(e: f64, strain: f64) -> f64 {
     }
 }
 
-/// After a 3000-step drive to ε = 0.012 > κc: both branches of the law were really visited
-/// (`softening` steps with 0 < D < 1, `failed` steps after failure) and every particle failed.
-fn softened_then_failed(sim: &Simulation<1>, softening: usize, failed: usize) {
+/// Drives the 1D Peerlings patch of `sim` (particles at `positions`) in 3000 equal steps of F
+/// to the Hencky strain 0.012 > κc, calling `check(step, ε, failed)` after each (`failed`: every
+/// particle has failed), then asserts that both branches of the law were really visited
+/// (> 2000 steps with κ0 < ε < κc, > 100 after failure) and every particle failed.
+fn drive_past_failure(
+    sim: &mut Simulation<1>,
+    positions: &[Vector<1>],
+    mut check: impl FnMut(&Simulation<1>, usize, f64, bool),
+) {
+    let steps = 3000;
+    let target = 0.012f64.exp();
+    let mut f = 1.0;
+    let (mut softening, mut failed) = (0, 0);
+    for k in 1..=steps {
+        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
+        drive_to(sim, positions, f, next);
+        f = next;
+        let strain = f.ln();
+        let all_failed = sim.failed_particles() == positions.len();
+        check(sim, k, strain, all_failed);
+        if strain > KAPPA0 && strain < KAPPA_C {
+            softening += 1;
+        }
+        if all_failed {
+            failed += 1;
+            assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
+        }
+    }
     assert!(softening > 2000, "{softening} softening steps");
     assert!(failed > 100, "{failed} steps after failure");
-    assert_eq!(sim.failed_particles(), sim.positions0().len());
+    assert_eq!(sim.failed_particles(), positions.len());
 }
 
 fn damaged<const D: usize>(
@@ -108,15 +133,7 @@ fn peerlings_patch_follows_the_uniaxial_law_through_the_solver() {
     let mut sim = Simulation::new(m).unwrap();
     assert!(sim.has_failure());
     sim.step().unwrap();
-    let steps = 3000;
-    let target = 0.012f64.exp(); // Hencky strain 0.012 > κc
-    let mut f = 1.0;
-    let (mut softening, mut failed) = (0, 0);
-    for k in 1..=steps {
-        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
-        drive_to(&mut sim, &positions, f, next);
-        f = next;
-        let strain = f.ln();
+    drive_past_failure(&mut sim, &positions, |sim, k, strain, _| {
         let expected = peerlings_uniaxial(1.0, strain);
         for i in 0..positions.len() {
             let sigma = sim.stresses()[i][(0, 0)];
@@ -125,15 +142,7 @@ fn peerlings_patch_follows_the_uniaxial_law_through_the_solver() {
                 "step {k}, ε = {strain}: σ = {sigma}, law {expected}"
             );
         }
-        if strain > KAPPA0 && strain < KAPPA_C {
-            softening += 1;
-        }
-        if sim.failed_particles() == positions.len() {
-            failed += 1;
-            assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
-        }
-    }
-    softened_then_failed(&sim, softening, failed);
+    });
 }
 
 #[test]
@@ -331,15 +340,7 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
     assert!(sim.has_failure());
     sim.step().unwrap();
     let (bulk, yield_strain) = (1.0 / 3.0, 5e-4);
-    let steps = 3000;
-    let target = 0.012f64.exp(); // Hencky strain 0.012 > κc
-    let mut f = 1.0;
-    let (mut softening, mut failed) = (0, 0);
-    for k in 1..=steps {
-        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
-        drive_to(&mut sim, &positions, f, next);
-        f = next;
-        let strain = f.ln();
+    drive_past_failure(&mut sim, &positions, |sim, k, strain, failed_now| {
         let (xx, yy, plastic) = if strain <= yield_strain {
             (strain, 0.0, 0.0)
         } else {
@@ -352,7 +353,6 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
         };
         let d = law.damage(strain); // κ = ε on this monotone path
         let felt = |s: f64| if s > 0.0 { (1.0 - d) * s } else { s };
-        let failed_now = sim.failed_particles() == positions.len();
         let (xx, yy) = if failed_now {
             (0.0, 0.0)
         } else {
@@ -374,15 +374,7 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
                 );
             }
         }
-        if d > 0.0 && !failed_now {
-            softening += 1;
-        }
-        if failed_now {
-            failed += 1;
-            assert_eq!(sim.sample(ParticleField::Damage, 3), 1.0);
-        }
-    }
-    softened_then_failed(&sim, softening, failed);
+    });
 }
 
 #[test]
