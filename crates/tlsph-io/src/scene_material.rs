@@ -255,16 +255,11 @@ pub(crate) fn material_model(
         None => None,
         Some(t) => Some(failure(ctx, t, field, &strength)?),
     };
-    let damage = match (&m.damage, &m.failure) {
-        (None, _) => None,
-        (Some(t), None) => Some(damage(ctx, t, field)?),
-        (Some(t), Some(_)) => {
-            return Err(ctx.error(
-                &t.span(),
-                &field("damage"),
-                "cannot be combined with `failure` on one material (not built yet): `damage` softens and fails a particle by its own law, `failure` fails it by a criterion; choose one".into(),
-            ))
-        }
+    // With both, the particle fails by whichever comes first (docs/scene-format.md, "Damage on
+    // plastic materials").
+    let damage = match &m.damage {
+        None => None,
+        Some(t) => Some(damage(ctx, t, field)?),
     };
     Ok(MaterialModel::ElasticPlastic(ElasticPlastic {
         elastic,

@@ -29,7 +29,8 @@ pub enum ParticleField {
     PlasticStrain,
     /// Temperature \[K\] (bodies with adiabatic heating only).
     Temperature,
-    /// Damage D (Johnson–Cook, Peerlings, Grady–Kipp) or 1 once failed; 0 in bodies without a
+    /// Damage D (Johnson–Cook, Peerlings, Grady–Kipp; the larger of the two where a material
+    /// has a softening law and a failure criterion) or 1 once failed; 0 in bodies without a
     /// failure or damage model.
     Damage,
 }

@@ -390,8 +390,9 @@ fn with_viscosity<const D: usize, P: Pressure, S: Strength, R: ReferenceJacobian
     }
 }
 
-/// Picks the loop for the body's point state and softening. A `damage` law excludes a
-/// `failure` criterion (refused at set-up), so only the states without failure soften.
+/// Picks the loop for the body's point state and softening. With both a `damage` law and a
+/// `failure` criterion the particle fails by whichever comes first; the criterion reads the
+/// effective (undamaged) state that drives the plastic flow.
 fn with_state<
     const D: usize,
     P: Pressure,
@@ -414,36 +415,42 @@ fn with_state<
         step,
         viscosity,
     };
-    // Zero-sized: no allocation, just the count the loop's zip needs.
-    let mut none = vec![(); step.range.len()];
-    match (state.plastic, state.damage, &material.damage) {
-        (PlasticState::Strain(v), DamageState::None, _) => {
-            update(&laws, &Undamaged, p, v, &mut none)
-        }
-        (PlasticState::StrainTemperature(v), DamageState::None, _) => {
-            update(&laws, &Undamaged, p, v, &mut none)
-        }
-        (PlasticState::StrainDamage(v), DamageState::None, _) => {
-            update(&laws, &Undamaged, p, v, &mut none)
-        }
-        (PlasticState::StrainTemperatureDamage(v), DamageState::None, _) => {
-            update(&laws, &Undamaged, p, v, &mut none)
-        }
-        (PlasticState::Strain(v), DamageState::Damaged(body), Some(model)) => {
+    match (state.damage, &material.damage) {
+        (DamageState::Damaged(body), Some(model)) => {
             let e = material.elastic.youngs_modulus();
             let (softening, points) =
                 softened_points(model, body, e, step.sound_speed0, state.spacing);
-            update(&laws, &softening, p, v, points)
+            with_points(&laws, &softening, p, state.plastic, points)
         }
-        (PlasticState::StrainTemperature(v), DamageState::Damaged(body), Some(model)) => {
-            let e = material.elastic.youngs_modulus();
-            let (softening, points) =
-                softened_points(model, body, e, step.sound_speed0, state.spacing);
-            update(&laws, &softening, p, v, points)
+        _ => {
+            // Zero-sized: no allocation, just the count the loop's zip needs.
+            let mut none = vec![(); step.range.len()];
+            with_points(&laws, &Undamaged, p, state.plastic, &mut none)
         }
-        _ => unreachable!(
-            "an elastic-plastic body carries a plastic state, and damage only without failure"
-        ),
+    }
+}
+
+/// Picks the loop for the body's packed plastic point state, with the softening fixed.
+fn with_points<
+    const D: usize,
+    P: Pressure,
+    S: Strength,
+    V: Viscosity,
+    X: Softening,
+    R: ReferenceJacobian + ?Sized,
+>(
+    laws: &Laws<'_, P, S, V, R>,
+    softening: &X,
+    p: &mut Particles<D>,
+    plastic: &mut PlasticState,
+    soft: &mut [X::Point],
+) {
+    match plastic {
+        PlasticState::Strain(v) => update(laws, softening, p, v, soft),
+        PlasticState::StrainTemperature(v) => update(laws, softening, p, v, soft),
+        PlasticState::StrainDamage(v) => update(laws, softening, p, v, soft),
+        PlasticState::StrainTemperatureDamage(v) => update(laws, softening, p, v, soft),
+        PlasticState::None => unreachable!("an elastic-plastic body carries a plastic state"),
     }
 }
 
@@ -569,14 +576,17 @@ fn update<
                 // neither its stress nor its artificial pressure, so its last energy increment
                 // must not either (the half of σ^n in the increment pairs with the work of the
                 // forces at t^n).
+                // A softening law is then not advanced: one mechanism fails the particle, so
+                // it is counted and removed once.
                 point.fail();
                 sigma_new = Tensor3::zeros();
                 q = 0.0;
-            }
-            sigma_new = softening.soften(k, soft, &f, sigma_new, dt);
-            if X::fails_now(soft) {
-                // As above: the particle leaves this step's force sums.
-                q = 0.0;
+            } else {
+                sigma_new = softening.soften(k, soft, &f, sigma_new, dt);
+                if X::fails_now(soft) {
+                    // As above: the particle leaves this step's force sums.
+                    q = 0.0;
+                }
             }
             if step.book_energy {
                 *energy += dt * j_half / rho0

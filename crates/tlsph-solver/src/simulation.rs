@@ -290,17 +290,6 @@ impl<const D: usize> Simulation<D> {
                 });
             }
         }
-        if let Some(m) = model.materials.iter().find(|m| {
-            matches!(m.model, MaterialModel::ElasticPlastic(p) if p.failure.is_some() && p.damage.is_some())
-        }) {
-            return Err(SetupError::InvalidConfig {
-                field: "damage",
-                message: format!(
-                    "material `{}` declares both a failure criterion and a softening damage law; one material takes one of them (not built: both on one material)",
-                    m.name
-                ),
-            });
-        }
         let plastic = bodies
             .iter()
             .map(|b| PlasticState::for_material(&model.materials[b.material].model, b.range.len()))
@@ -1535,10 +1524,12 @@ impl<const D: usize> Simulation<D> {
             ParticleField::Damage => {
                 let b = self.body_of(i);
                 let k = i - self.bodies[b].range.start;
-                self.plastic[b]
-                    .damage(k)
-                    .or_else(|| self.damage[b].damage(k))
-                    .unwrap_or(0.0)
+                // With a softening law and a failure criterion on one material, the larger of
+                // the two damages (both read 1 once the particle has failed).
+                match (self.plastic[b].damage(k), self.damage[b].damage(k)) {
+                    (Some(a), Some(b)) => a.max(b),
+                    (a, b) => a.or(b).unwrap_or(0.0),
+                }
             }
             ParticleField::Temperature => {
                 let b = self.body_of(i);

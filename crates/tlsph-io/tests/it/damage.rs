@@ -229,23 +229,26 @@ fn elastic_plastic_and_johnson_cook_materials_take_damage() {
 }
 
 #[test]
+fn damage_and_a_failure_criterion_are_read_together() {
+    // The particle fails by whichever comes first (docs/scene-format.md, "Damage on plastic
+    // materials"): both reach the model.
+    let text = plastic_bar("failure = { model = \"max-plastic-strain\", limit = 0.1 }");
+    let scene = parse_scene(&text, "scene.toml").unwrap();
+    let DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let MaterialModel::ElasticPlastic(bar) = &model.materials[0].model else {
+        panic!("bar is elastic-plastic")
+    };
+    assert!(matches!(bar.damage, Some(DamageModel::Peerlings(_))));
+    assert!(matches!(
+        bar.failure,
+        Some(tlsph_solver::FailureModel::MaxPlasticStrain(_))
+    ));
+}
+
+#[test]
 fn damage_is_rejected_where_it_cannot_act() {
-    // Together with a failure criterion on one material (not built).
-    let failure = "failure = { model = \"max-plastic-strain\", limit = 0.1 }";
-    let text = plastic_bar(failure);
-    let err = error_of(&text);
-    assert_eq!(err.field, "material[bar].damage");
-    assert!(
-        err.message.contains("cannot be combined with `failure`"),
-        "{err}"
-    );
-    assert_eq!(
-        err.line,
-        Some(line_of(
-            &text,
-            "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }"
-        ))
-    );
     // With an initial stress (the effective stress starts at zero, so it would be lost).
     let text = plastic_bar("").replacen(
         "spacing = 1.0\n",

@@ -39,12 +39,9 @@ fn drive_past_failure(
     positions: &[Vector<1>],
     mut check: impl FnMut(&Simulation<1>, usize, f64, bool),
 ) {
-    let steps = 3000;
-    let target = 0.012f64.exp();
     let mut f = 1.0;
     let (mut softening, mut failed) = (0, 0);
-    for k in 1..=steps {
-        let next = 1.0 + (target - 1.0) * k as f64 / steps as f64;
+    for (k, next) in (1..).zip(driven_stretches()) {
         drive_to(sim, positions, f, next);
         f = next;
         let strain = f.ln();
@@ -61,6 +58,18 @@ fn drive_past_failure(
     assert!(softening > 2000, "{softening} softening steps");
     assert!(failed > 100, "{failed} steps after failure");
     assert_eq!(sim.failed_particles(), positions.len());
+}
+
+/// The stretches f of the 3000 steps of [`drive_past_failure`], to the Hencky strain 0.012.
+fn driven_stretches() -> impl Iterator<Item = f64> {
+    let steps = 3000;
+    let target = 0.012f64.exp();
+    (1..=steps).map(move |k| 1.0 + (target - 1.0) * k as f64 / steps as f64)
+}
+
+/// The Hencky strains ln f of [`driven_stretches`].
+fn driven_strains() -> Vec<f64> {
+    driven_stretches().map(f64::ln).collect()
 }
 
 fn damaged<const D: usize>(
@@ -329,17 +338,54 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
     // plastic one: σ_xx = M ε up to ε_y, then K ε + ⅔σ_y, and σ_yy = σ_zz = K ε − ⅓σ_y
     // (≥ 0 past yield). The body feels each positive principal value times (1 − D(ε))
     // (numerics.md §9.1), and the plastic strain runs on undisturbed by the damage. Same 1e-12
-    // argument as the elastic patch above.
+    // argument as the elastic patch above. The patch fails at κc.
+    assert!(!peerlings_plastic_patch(None));
+}
+
+#[test]
+fn a_failure_criterion_fails_a_softening_plastic_patch_when_it_comes_first() {
+    // The patch above with a maximum-plastic-strain criterion as well: ε̄p = ⅔(ε − ε_y)
+    // reaches the limit 4e-3 at ε = 6.5e-3, inside the softening branch (D = 0.61). Up to
+    // there the patch follows the softened law, and from there on every particle has failed.
+    assert!(peerlings_plastic_patch(Some(4e-3)));
+}
+
+#[test]
+fn a_particle_reaching_both_limits_in_one_step_fails_once() {
+    // The limit put between ε̄p of the last step below κc and of the first at or above it:
+    // both mechanisms fail the patch in that step, and each particle must be counted once (the
+    // softening law is not advanced in a step the criterion fails the particle; advancing it
+    // as well counted 24 failures of the 12 particles).
+    let strains = driven_strains();
+    let first = strains.iter().position(|&e| e >= KAPPA_C).unwrap();
+    let between = 0.5 * (strains[first - 1] + strains[first]);
+    let limit = 2.0 / 3.0 * (between - 5e-4);
+    // Fails at κc, not before: the criterion's own step.
+    assert!(!peerlings_plastic_patch(Some(limit)));
+}
+
+/// Drives the 1D Peerlings patch of a yielding plastic material (see the first caller), with
+/// a maximum-plastic-strain failure criterion `failure_limit` when given, past failure,
+/// checking σ, ε̄p and the damage field against the laws at every step. Returns whether the
+/// patch failed while its damage D was still below 1 (by the criterion).
+fn peerlings_plastic_patch(failure_limit: Option<f64>) -> bool {
+    use tlsph_materials::MaxPlasticStrainFailure;
     let dx = 1.0;
     let positions = lattice([12], dx);
     let elastic = LinearElastic::new(1.0, 0.0).unwrap();
     let sigma_y = 5e-4;
     let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
-    let material = plastic_with_damage(elastic, sigma_y, DamageModel::Peerlings(law));
+    let mut material = plastic_with_damage(elastic, sigma_y, DamageModel::Peerlings(law));
+    if let (MaterialModel::ElasticPlastic(p), Some(limit)) = (&mut material, failure_limit) {
+        p.failure = Some(tlsph_solver::FailureModel::MaxPlasticStrain(
+            MaxPlasticStrainFailure::new(limit).unwrap(),
+        ));
+    }
     let mut sim = Simulation::new(with_material(positions.clone(), dx, material, 1e9)).unwrap();
     assert!(sim.has_failure());
     sim.step().unwrap();
     let (bulk, yield_strain) = (1.0 / 3.0, 5e-4);
+    let mut failed_by_criterion = false;
     drive_past_failure(&mut sim, &positions, |sim, k, strain, failed_now| {
         let (xx, yy, plastic) = if strain <= yield_strain {
             (strain, 0.0, 0.0)
@@ -352,6 +398,13 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
             )
         };
         let d = law.damage(strain); // κ = ε on this monotone path
+        if let Some(limit) = failure_limit {
+            // Away from the limit by more than round-off, the criterion decides.
+            if (plastic - limit).abs() > 1e-9 {
+                assert_eq!(failed_now, plastic > limit, "step {k}: ε̄p = {plastic}");
+            }
+            failed_by_criterion |= failed_now && d < 1.0;
+        }
         let felt = |s: f64| if s > 0.0 { (1.0 - d) * s } else { s };
         let (xx, yy) = if failed_now {
             (0.0, 0.0)
@@ -372,33 +425,12 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
                     (ep - plastic).abs() < 1e-12,
                     "step {k}: ε̄p = {ep}, {plastic}"
                 );
+                let damage = sim.sample(ParticleField::Damage, i);
+                assert!((damage - d).abs() < 1e-12, "step {k}: D = {damage}, {d}");
             }
         }
     });
-}
-
-#[test]
-fn a_plastic_material_takes_damage_or_failure_not_both() {
-    use tlsph_materials::MaxPlasticStrainFailure;
-    let dx = 1.0;
-    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
-    let mut material = plastic_with_damage(
-        LinearElastic::new(1.0, 0.0).unwrap(),
-        5e-4,
-        DamageModel::Peerlings(law),
-    );
-    if let MaterialModel::ElasticPlastic(p) = &mut material {
-        p.failure = Some(tlsph_solver::FailureModel::MaxPlasticStrain(
-            MaxPlasticStrainFailure::new(0.1).unwrap(),
-        ));
-    }
-    match Simulation::new(with_material(lattice([6], dx), dx, material, 1.0)) {
-        Err(SetupError::InvalidConfig { field, message }) => {
-            assert_eq!(field, "damage");
-            assert!(message.contains("material `"), "{message}");
-        }
-        other => panic!("expected a damage error, got {other:?}"),
-    }
+    failed_by_criterion
 }
 
 /// A 2D bar pulled apart at both ends until Grady–Kipp damage fails particles; elastic, or
