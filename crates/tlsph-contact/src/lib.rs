@@ -13,7 +13,8 @@
 //!   normal [`OutwardNormal`] it needs.
 //! * [`RigidPlane`]: a fixed rigid plane (an anvil) pushing back particles by a penalty
 //!   spring, [`FlatDisc`]: a flat wall of finite size (a disc, a segment in 2D) with a rounded
-//!   rim, [`RigidBall`]: a rigid sphere (an indenter), all behind [`WallGeometry`]; and their Coulomb friction
+//!   rim, [`RigidBall`]: a rigid sphere (an indenter), [`RigidCylinder`]: a rigid cylinder of
+//!   unbounded length (a roller), all behind [`WallGeometry`]; and their Coulomb friction
 //!   [`wall_friction_acceleration`]. Both friction laws take
 //!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the
 //!   sliding coefficient with speed (numerics.md §13).
@@ -51,8 +52,8 @@ pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
 pub use wall::{
-    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidPlane,
-    WallGeometry, WALL_STIFFNESS_FACTOR,
+    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidCylinder,
+    RigidPlane, WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 
 /// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list

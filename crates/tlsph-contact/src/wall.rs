@@ -232,6 +232,76 @@ impl<const D: usize> WallGeometry<D> for RigidBall<D> {
     }
 }
 
+/// A rigid cylinder of unbounded length (ours, not in the theses): the particles outside the
+/// circular cylinder of radius R about the line through `point` along `axis`, e.g. the
+/// rollers of a three-point bend or a cylindrical indenter longer than the body. A particle
+/// touches it when its contact sphere reaches the surface, δ = Δx/2 + R − r with r the distance
+/// from x to the axis, and is pushed away from the axis, across it; the push is the gradient of
+/// the spring's ½ k δ². In 2D this is the ball (a cylinder in plane strain); the type is
+/// meant for 3D.
+#[derive(Debug, Clone)]
+pub struct RigidCylinder<const D: usize> {
+    point: Vector<D>,
+    /// Unit axis direction.
+    axis: Vector<D>,
+    /// R \[m\].
+    radius: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> RigidCylinder<D> {
+    /// The cylinder of radius `radius` about the line through `point` along `axis`
+    /// (normalised here), for particles with smoothing lengths `h`, sound speeds `c0` and
+    /// spacings `dx` (one entry per particle).
+    pub fn new(
+        point: Vector<D>,
+        axis: Vector<D>,
+        radius: f64,
+        h: &[f64],
+        c0: &[f64],
+        dx: &[f64],
+    ) -> Self {
+        Self {
+            point,
+            axis: axis.normalize(),
+            radius,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+
+    /// The part of x − point across the axis (its length is the distance r to the axis).
+    #[inline]
+    pub fn radial_offset(&self, x: Vector<D>) -> Vector<D> {
+        let offset = x - self.point;
+        offset - self.axis * offset.dot(&self.axis)
+    }
+}
+
+impl<const D: usize> WallGeometry<D> for RigidCylinder<D> {
+    /// δ = Δx/2 + R − r, pushed along the radial offset / r (for a particle exactly on the
+    /// axis, along the coordinate axis least aligned with the cylinder's, made normal to it).
+    #[inline]
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+        let radial = self.radial_offset(x);
+        let distance = radial.norm();
+        let delta = (self.springs.radius[i] + self.radius - distance).max(0.0);
+        let direction = if distance > 0.0 {
+            radial / distance
+        } else {
+            let least = self.axis.iamin();
+            let mut e = Vector::<D>::zeros();
+            e[least] = 1.0;
+            (e - self.axis * self.axis[least]).normalize()
+        };
+        (delta, direction)
+    }
+
+    #[inline]
+    fn stiffness_per_mass(&self, i: usize) -> f64 {
+        self.springs.stiffness_per_mass[i]
+    }
+}
+
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
 /// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).

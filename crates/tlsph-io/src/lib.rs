@@ -9,6 +9,7 @@ mod run;
 mod scene;
 mod scene_file;
 mod scene_material;
+mod scene_wall;
 pub mod vtk;
 
 pub use geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape, VOLUME_SUBSAMPLES};

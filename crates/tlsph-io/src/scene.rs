@@ -6,6 +6,7 @@ use crate::scene_file::{
     BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
     StressGradients,
 };
+use crate::scene_wall::build_wall;
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -17,7 +18,7 @@ use tlsph_solver::{
     BoundaryDescription, BulkViscosity, ContactDescription, EffectsDescription, Formulation,
     FrictionCoefficients, MaterialDescription, MaterialModel, Model, ParticleField,
     PenaltyContactDescription, PressureModel, RampShape, ReferenceSupport, SimulationConfig,
-    StressUpdate, SymmetryPlane, TableShape, VelocityRamp, WallDescription, WallMotion, WallShape,
+    StressUpdate, SymmetryPlane, TableShape, VelocityRamp,
 };
 use toml::Spanned;
 
@@ -252,7 +253,7 @@ impl Context<'_> {
     /// The friction of the table at `prefix` (a wall or the contact) from its keys `friction`
     /// (kinetic μ ≥ 0, default 0), `static_friction` (μ_s ≥ μ, default μ) and
     /// `friction_decay` (d_c ≥ 0, only with μ_s > μ).
-    fn friction_coefficients(
+    pub(crate) fn friction_coefficients(
         &self,
         friction: &Option<Spanned<f64>>,
         static_friction: &Option<Spanned<f64>>,
@@ -363,7 +364,7 @@ impl Context<'_> {
             .collect()
     }
 
-    fn vector<const D: usize>(
+    pub(crate) fn vector<const D: usize>(
         &self,
         value: &Spanned<Vec<f64>>,
         field: &str,
@@ -647,234 +648,8 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 format!("`{name}` must be unique and a plain name (letters, digits, -, _, .)"),
             ));
         }
-        let point = ctx.vector::<D>(&w.point, &format!("wall[{name}].point"))?;
-        let key = |k: &str| format!("wall[{name}].{k}");
-        #[derive(Clone, Copy, PartialEq)]
-        enum Kind {
-            Plane,
-            Disc,
-            Ball,
-        }
-        let default_kind = if w.radius.is_some() {
-            Kind::Disc
-        } else {
-            Kind::Plane
-        };
-        let kind = ctx.keyword(
-            w.shape.as_ref(),
-            &key("shape"),
-            "wall shape",
-            default_kind,
-            &[
-                ("plane", Kind::Plane),
-                ("disc", Kind::Disc),
-                ("ball", Kind::Ball),
-            ],
-        )?;
-        let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
-        let radius = match (&w.radius, kind) {
-            (None, Kind::Plane) => None,
-            (Some(r), Kind::Plane) => {
-                return Err(ctx.error(
-                    &r.span(),
-                    &key("radius"),
-                    "a plane wall has no radius (shape = \"disc\" or \"ball\" has)".into(),
-                ))
-            }
-            (None, _) => {
-                return Err(ctx.error(
-                    &shape_span,
-                    &key("radius"),
-                    "is required by a disc or ball wall".into(),
-                ))
-            }
-            (Some(r), _) if D < 2 => {
-                return Err(ctx.error(
-                    &r.span(),
-                    &key("radius"),
-                    "a 1D wall is a point; a finite wall needs a 2D or 3D scene".into(),
-                ))
-            }
-            (Some(r), _) => Some(ctx.positive(r, &key("radius"))?),
-        };
-        // A ball has no normal; the others need one. The ball's stands in as the last axis.
-        let normal = match (&w.normal, kind) {
-            (Some(n), Kind::Ball) => {
-                return Err(ctx.error(
-                    &n.span(),
-                    &key("normal"),
-                    "a ball wall has no normal (it pushes radially from `point`, its centre)"
-                        .into(),
-                ))
-            }
-            (None, Kind::Ball) => {
-                let mut last = Vector::<D>::zeros();
-                last[D - 1] = 1.0;
-                last
-            }
-            (None, _) => {
-                return Err(ctx.error(
-                    &w.name.span(),
-                    &key("normal"),
-                    "is required by a plane or disc wall".into(),
-                ))
-            }
-            (Some(n), _) => {
-                let normal = ctx.vector::<D>(n, &key("normal"))?;
-                if normal.norm() == 0.0 {
-                    return Err(ctx.error(&n.span(), &key("normal"), "must not be zero".into()));
-                }
-                normal
-            }
-        };
-        let unit = normal / normal.norm();
-        if kind == Kind::Ball {
-            let r = radius.unwrap_or(0.0);
-            for body in &bodies {
-                if let Some(x) = body.positions.iter().find(|x| (*x - point).norm() < r) {
-                    return Err(ctx.error(
-                        &w.point.span(),
-                        &key("point"),
-                        format!(
-                            "body `{}` starts inside the ball: its particle at [{}] is {:.3e} from the centre, less than the radius {r:e}",
-                            body.name,
-                            point_text(x),
-                            (x - point).norm()
-                        ),
-                    ));
-                }
-            }
-        } else {
-            // Of a finite wall only what lies in front of or behind its face can be on the
-            // wrong side; beyond its rim a body may be anywhere.
-            let in_footprint = |x: &Vector<D>| {
-                radius.is_none_or(|r| {
-                    let offset = x - point;
-                    (offset - unit * offset.dot(&unit)).norm() <= r
-                })
-            };
-            for body in &bodies {
-                let behind = body
-                    .positions
-                    .iter()
-                    .filter(|x| in_footprint(x))
-                    .map(|x| (x, (x - point).dot(&unit)))
-                    .min_by(|a, b| a.1.total_cmp(&b.1));
-                if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
-                    let face = if radius.is_some() { "disc" } else { "plane" };
-                    return Err(ctx.error(
-                        &w.point.span(),
-                        &key("point"),
-                        format!(
-                            "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the {face} (particles must start on the side the normal points to)",
-                            body.name,
-                            point_text(x),
-                            -d
-                        ),
-                    ));
-                }
-            }
-        }
-        let friction = ctx.friction_coefficients(
-            &w.friction,
-            &w.static_friction,
-            &w.friction_decay,
-            &format!("wall[{name}]"),
-        )?;
-        let amplitude = parse_amplitude(
-            ctx,
-            &w.ramp_time,
-            &w.ramp_shape,
-            &w.amplitude,
-            &w.amplitude_shape,
-            &|key: &str| format!("wall[{name}].{key}"),
-        )?;
-        let motion = match &w.velocity {
-            Some(v) => {
-                let velocity = ctx.vector::<D>(v, &format!("wall[{name}].velocity"))?;
-                // A wall that lies along a symmetry plane's normal and slides along it would
-                // slide the other way in the mirrored half: with friction, not a symmetric
-                // model (frictionless, the sliding is not felt; a wall across the normal is
-                // mirrored into a second wall, moving as its mirror image).
-                // (A disc or ball is mirrored into a second one unless it crosses the plane,
-                // which the check on `radius` below handles.)
-                let sliding_across_a_mirror = file.symmetry_plane.iter().find(|p| {
-                    axis_index(p.axis.get_ref()).is_some_and(|a| {
-                        kind == Kind::Plane
-                            && a < D
-                            && unit[a] == 0.0
-                            && velocity[a] != 0.0
-                            && friction.is_frictional()
-                    })
-                });
-                if let Some(plane) = sliding_across_a_mirror {
-                    return Err(ctx.error(
-                        &v.span(),
-                        &format!("wall[{name}].velocity"),
-                        format!(
-                            "slides along {}, the normal of a symmetry plane: its friction would drag the mirrored half the other way, so the model is not symmetric",
-                            plane.axis.get_ref()
-                        ),
-                    ));
-                }
-                Some(WallMotion {
-                    velocity,
-                    amplitude,
-                })
-            }
-            None => {
-                if let Some((key, span)) = history_key(&w.ramp_time, &w.amplitude) {
-                    return Err(ctx.error(
-                        &span,
-                        &format!("wall[{name}].{key}"),
-                        format!(
-                            "a fixed wall has nothing to scale in time; give a `velocity` or drop `{key}`"
-                        ),
-                    ));
-                }
-                None
-            }
-        };
-        if let (Some(r), Some(span)) = (radius, w.radius.as_ref().map(|r| r.span())) {
-            // The mirrored half of the model meets the wall's mirror image. A disc or ball
-            // crossing a symmetry plane must be centred on it and stay so, or the two would
-            // overlap into another shape. (A disc only crosses planes its face lies across.)
-            let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
-            let asymmetric = file.symmetry_plane.iter().find(|p| {
-                let position = *p.position.get_ref();
-                axis_index(p.axis.get_ref()).is_some_and(|a| {
-                    a < D
-                        && (kind == Kind::Ball || unit[a] == 0.0)
-                        && (point[a] - position).abs() < r
-                        && (point[a] != position || sliding(a))
-                })
-            });
-            if let Some(plane) = asymmetric {
-                let what = if kind == Kind::Ball { "ball" } else { "disc" };
-                return Err(ctx.error(
-                    &span,
-                    &key("radius"),
-                    format!(
-                        "the {what} crosses the symmetry plane {} = {} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the {what} on the plane and move it along the plane only, or keep it clear of the plane",
-                        plane.axis.get_ref(),
-                        plane.position.get_ref()
-                    ),
-                ));
-            }
-        }
-        let shape = match (kind, radius) {
-            (Kind::Disc, Some(radius)) => WallShape::Disc { radius },
-            (Kind::Ball, Some(radius)) => WallShape::Ball { radius },
-            _ => WallShape::Plane,
-        };
-        effects.walls.push(WallDescription {
-            name,
-            point,
-            normal,
-            friction,
-            motion,
-            shape,
-        });
+        let wall = build_wall(ctx, w, name, &bodies, &file.symmetry_plane)?;
+        effects.walls.push(wall);
     }
     for plane in &file.symmetry_plane {
         let axis = axis_index(plane.axis.get_ref()).unwrap_or(D);
@@ -2277,7 +2052,7 @@ fn shape_of<const D: usize>(
 
 /// The first time-history key given (`ramp_time`, then `amplitude`) with its place, for the
 /// error of a fixed wall or boundary that has no velocity to scale.
-fn history_key(
+pub(crate) fn history_key(
     ramp_time: &Option<Spanned<f64>>,
     amplitude: &Option<Spanned<Vec<Vec<f64>>>>,
 ) -> Option<(&'static str, std::ops::Range<usize>)> {
@@ -2292,7 +2067,7 @@ fn history_key(
 /// `amplitude = [[t, r], ...]`, an [`AmplitudeTable`] joined as `amplitude_shape` says
 /// (`"linear"`, default, or `"smooth-step"`), not both; `None` when neither is given.
 /// `field` names a key of the table.
-fn parse_amplitude(
+pub(crate) fn parse_amplitude(
     ctx: &Context<'_>,
     time: &Option<Spanned<f64>>,
     shape: &Option<Spanned<String>>,
@@ -2684,13 +2459,13 @@ fn first_overlap<const D: usize>(
 }
 
 /// A point as its coordinates separated by commas, for messages ("0.0005, 0.0005").
-fn point_text<const D: usize>(x: &Vector<D>) -> String {
+pub(crate) fn point_text<const D: usize>(x: &Vector<D>) -> String {
     let parts: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
     parts.join(", ")
 }
 
 /// Index of a coordinate axis named "x", "y" or "z".
-fn axis_index(name: &str) -> Option<usize> {
+pub(crate) fn axis_index(name: &str) -> Option<usize> {
     ["x", "y", "z"].iter().position(|a| *a == name)
 }
 

@@ -123,7 +123,7 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid plane, or a disc or ball of `radius`, frictionless unless `friction` is
+/// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, frictionless unless `friction` is
 /// given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -140,10 +140,13 @@ pub(crate) struct WallTable {
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
     pub amplitude_shape: Option<Spanned<String>>,
-    /// "plane" (default), "disc" (the default with `radius`) or "ball".
+    /// "plane" (default), "disc" (the default with `radius`), "ball" or "cylinder".
     pub shape: Option<Spanned<String>>,
-    /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`.
+    /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`, or the
+    /// cylinder of this radius about its axis.
     pub radius: Option<Spanned<f64>>,
+    /// Direction of a cylinder's axis (through `point`).
+    pub axis: Option<Spanned<Vec<f64>>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

@@ -663,13 +663,14 @@ pub struct WallDescription<const D: usize> {
     pub friction: FrictionCoefficients,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
-    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc or a ball.
-    pub shape: WallShape,
+    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc or a ball, or (3D)
+    /// a cylinder.
+    pub shape: WallShape<D>,
 }
 
 /// The shape of a rigid wall (ours, not in the theses; numerics.md §13 `[C]` law on each).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum WallShape {
+pub enum WallShape<const D: usize> {
     /// The unbounded plane through `point` normal to `normal` (`tlsph_contact::RigidPlane`).
     Plane,
     /// The disc of this radius about `point` in that plane (the segment of this half-length in
@@ -683,6 +684,15 @@ pub enum WallShape {
     Ball {
         /// R \[m\].
         radius: f64,
+    },
+    /// (3D) The cylinder of this radius about the line through `point` along `axis`, unbounded
+    /// in length: a roller, a cylindrical indenter (`tlsph_contact::RigidCylinder`); `normal`
+    /// is not used.
+    Cylinder {
+        /// R \[m\].
+        radius: f64,
+        /// Direction of the axis (need not be unit).
+        axis: Vector<D>,
     },
 }
 

@@ -25,7 +25,8 @@ use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_contact::{
-    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidPlane, WallGeometry,
+    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidCylinder, RigidPlane,
+    WallGeometry,
 };
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
@@ -1957,16 +1958,21 @@ fn build_effects<const D: usize>(
         )?)));
     }
     for wall in &model.effects.walls {
-        // A ball has no normal.
-        let needs_normal = !matches!(wall.shape, WallShape::Ball { .. });
-        let normal_ok = !needs_normal
-            || (wall.normal.norm() > 0.0 && wall.normal.iter().all(|x| x.is_finite()));
-        if !(normal_ok && wall.point.iter().all(|x| x.is_finite())) {
+        // A ball or a cylinder has no normal; a cylinder's axis is checked like a normal.
+        let direction = match wall.shape {
+            WallShape::Plane | WallShape::Disc { .. } => Some(("normal", wall.normal)),
+            WallShape::Ball { .. } => None,
+            WallShape::Cylinder { axis, .. } => Some(("axis", axis)),
+        };
+        let direction_ok =
+            direction.is_none_or(|(_, n)| n.norm() > 0.0 && n.iter().all(|x| x.is_finite()));
+        if !(direction_ok && wall.point.iter().all(|x| x.is_finite())) {
             return Err(SetupError::InvalidConfig {
                 field: "wall",
                 message: format!(
-                    "wall `{}` needs a finite point and a non-zero normal",
-                    wall.name
+                    "wall `{}` needs a finite point and a finite, non-zero {}",
+                    wall.name,
+                    direction.map_or("centre", |(name, _)| name)
                 ),
             });
         }
@@ -2022,6 +2028,20 @@ fn build_effects<const D: usize>(
                 push_wall(
                     &mut effects,
                     RigidWall::new(name, ball, motion),
+                    coefficients,
+                );
+            }
+            WallShape::Cylinder { radius, axis } => {
+                let radius = checked_radius(radius)?;
+                if D != 3 {
+                    return Err(wall_error(format!(
+                        "a cylinder needs a 3D scene (in 2D a ball is the cylinder in plane strain), got {D}D"
+                    )));
+                }
+                let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
+                push_wall(
+                    &mut effects,
+                    RigidWall::new(name, cylinder, motion),
                     coefficients,
                 );
             }

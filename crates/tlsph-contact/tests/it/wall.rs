@@ -3,8 +3,8 @@
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidPlane, Vector,
-    WallGeometry, WALL_STIFFNESS_FACTOR,
+    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidCylinder,
+    RigidPlane, Vector, WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 
 #[test]
@@ -269,6 +269,50 @@ fn a_ball_pushes_radially_by_the_penetration_of_its_surface() {
             (2.2, 1.6, 0.1),
             (-0.4, -1.2, 1.1),
             (1.0, 2.45, 0.0),
+        ],
+    );
+}
+
+#[test]
+fn a_cylinder_pushes_away_from_its_axis_by_the_penetration_of_its_surface() {
+    // Cylinder of radius 2 about the line through (1, 0, 0) along (0, 1, 1)/√2, particle
+    // contact radius ½: δ = 2.5 − r, r the distance to the axis, whatever the position along it.
+    let cylinder = RigidCylinder::<3>::new(
+        Vector::<3>::new(1.0, 0.0, 0.0),
+        Vector::<3>::new(0.0, 3.0, 3.0),
+        2.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let across = Vector::<3>::new(0.0, 1.0, -1.0).normalize();
+    for along in [-7.0, 0.0, 0.4, 12.5] {
+        let on_axis = Vector::<3>::new(1.0, along, along);
+        let (delta, n) = cylinder.contact(0, on_axis + across * 2.3);
+        assert_relative_eq!(delta, 0.2, max_relative = 1e-13);
+        assert_relative_eq!(n, across, epsilon = 1e-13);
+        let (delta, n) = cylinder.contact(0, on_axis + Vector::<3>::new(-1.8, 0.0, 0.0));
+        assert_relative_eq!(delta, 0.7, max_relative = 1e-13);
+        assert_relative_eq!(n, -Vector::<3>::x(), epsilon = 1e-13);
+        assert_eq!(cylinder.contact(0, on_axis + across * 2.6).0, 0.0);
+    }
+    // At the axis' point itself: the whole penetration, across the axis.
+    let (delta, n) = cylinder.contact(0, Vector::<3>::new(1.0, 0.0, 0.0));
+    assert_eq!(delta, 2.5);
+    assert!(n.dot(&Vector::<3>::new(0.0, 1.0, 1.0)).abs() < 1e-15);
+    assert!((n.norm() - 1.0).abs() < 1e-15);
+    assert_relative_eq!(
+        cylinder.stiffness_per_mass(0),
+        WALL_STIFFNESS_FACTOR * 9.0 / 1.44,
+        max_relative = 1e-15
+    );
+    assert_push_is_energy_gradient(
+        &cylinder,
+        &[
+            (1.0, 0.3, 2.3),
+            (2.2, 1.6, 0.1),
+            (-0.4, -1.2, 1.1),
+            (3.2, 5.0, 5.3),
         ],
     );
 }

@@ -346,3 +346,154 @@ fn a_ball_wall_is_read_and_its_keys_are_checked() {
         "{e}"
     );
 }
+
+/// A 3D beam 20 × 4 × 4 mm on the floor z = 0, with a roller of radius 3 mm lying across its
+/// top face (axis along y, centre 3 mm above the face) and a symmetry plane at x = 0 through
+/// the roller's axis: half of a three-point bend.
+const HALF_BEND: &str = r#"
+[simulation]
+dimension = 3
+formulation = "total-lagrangian-corrected"
+kernel = "cubic-spline"
+smoothing_factor = 1.2
+cfl = 0.3
+end_time = 1.0e-6
+
+[[material]]
+name = "steel"
+model = "linear-elastic"
+density = 7850.0
+youngs_modulus = 200.0e9
+poisson_ratio = 0.3
+
+[[body]]
+name = "beam"
+material = "steel"
+spacing = 1.0e-3
+box = { min = [0.0, 0.0, 0.0], max = [20.0e-3, 4.0e-3, 4.0e-3] }
+
+[[symmetry_plane]]
+axis = "x"
+position = 0.0
+
+[[wall]]
+name = "roller"
+shape = "cylinder"
+point = [0.0, 2.0e-3, 7.0e-3]
+axis = [0.0, 1.0, 0.0]
+radius = 3.0e-3
+velocity = [0.0, 0.0, -1.0]
+"#;
+
+#[test]
+fn a_cylinder_wall_is_read_and_its_keys_are_checked() {
+    let scene = parse_scene(HALF_BEND, "bend.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert_eq!(
+        model.effects.walls[0].shape,
+        WallShape::Cylinder {
+            radius: 3.0e-3,
+            axis: tlsph_math::Vector::<3>::new(0.0, 1.0, 0.0)
+        }
+    );
+    // Lowered by 2 mm its axis is closer than R to the top layer: refused at `point`.
+    let sunk = HALF_BEND.replace(
+        "point = [0.0, 2.0e-3, 7.0e-3]",
+        "point = [0.0, 2.0e-3, 5.0e-3]",
+    );
+    let e = error_of(&sunk);
+    assert_eq!(e.field, "wall[roller].point", "{e}");
+    assert!(
+        e.message.contains("starts inside the cylinder") && e.message.contains("from the axis"),
+        "{e}"
+    );
+    // No axis, an axis that is zero, a normal on a cylinder, an axis on a ball, no radius.
+    for (from, to, field, fragment) in [
+        (
+            "axis = [0.0, 1.0, 0.0]\n",
+            "",
+            "wall[roller].axis",
+            "required",
+        ),
+        (
+            "axis = [0.0, 1.0, 0.0]",
+            "axis = [0.0, 0.0, 0.0]",
+            "wall[roller].axis",
+            "zero",
+        ),
+        (
+            "shape = \"cylinder\"\n",
+            "shape = \"cylinder\"\nnormal = [0.0, 0.0, -1.0]\n",
+            "wall[roller].normal",
+            "has no normal",
+        ),
+        (
+            "shape = \"cylinder\"",
+            "shape = \"ball\"",
+            "wall[roller].axis",
+            "only a cylinder",
+        ),
+        ("radius = 3.0e-3\n", "", "wall[roller].radius", "required"),
+    ] {
+        let bad = HALF_BEND.replacen(from, to, 1);
+        assert_ne!(bad, HALF_BEND);
+        let e = error_of(&bad);
+        assert_eq!(e.field, field, "{to}: {e}");
+        assert!(e.message.contains(fragment), "{to}: {e}");
+        assert!(e.line.is_some(), "{e}");
+    }
+    // A 2D scene has no cylinder (the ball is one in plane strain).
+    let flat = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[wall]]\nname = \"roller\"\nshape = \"cylinder\"\npoint = [5.0e-3, 14.0e-3]\naxis = [0.0, 1.0]\nradius = 4.0e-3\n";
+    let e = error_of(&flat);
+    assert_eq!(e.field, "wall[roller].shape", "{e}");
+    assert!(
+        e.message.contains("3D") && e.message.contains("ball"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_cylinder_across_a_symmetry_plane_must_be_its_own_mirror_image() {
+    // Along the plane x = 0: centred on it (the half bend) and moving along it is accepted;
+    // off it, or moving across it, is refused.
+    for (from, to) in [
+        ("point = [0.0, ", "point = [1.0e-3, "),
+        ("velocity = [0.0, 0.0, -1.0]", "velocity = [1.0, 0.0, -1.0]"),
+    ] {
+        let bad = HALF_BEND.replacen(from, to, 1);
+        let e = error_of(&bad);
+        assert_eq!(e.field, "wall[roller].radius", "{to}: {e}");
+        assert!(
+            e.message
+                .contains("the cylinder crosses the symmetry plane x = 0"),
+            "{e}"
+        );
+    }
+    // Along the plane's normal (axis x) the infinite cylinder is its own mirror image
+    // anywhere; it may slide along its axis unless it has friction.
+    let along_x = HALF_BEND
+        .replace(
+            "point = [0.0, 2.0e-3, 7.0e-3]",
+            "point = [5.0e-3, 2.0e-3, 7.0e-3]",
+        )
+        .replace("axis = [0.0, 1.0, 0.0]", "axis = [2.0, 0.0, 0.0]")
+        .replace("velocity = [0.0, 0.0, -1.0]", "velocity = [1.0, 0.0, -1.0]");
+    parse_scene(&along_x, "bend.toml").unwrap();
+    let rubbing = along_x.replace("radius = 3.0e-3\n", "radius = 3.0e-3\nfriction = 0.2\n");
+    let e = error_of(&rubbing);
+    assert_eq!(e.field, "wall[roller].velocity", "{e}");
+    assert!(e.message.contains("friction would drag"), "{e}");
+    assert_eq!(
+        e.line,
+        Some(line_of(&rubbing, "velocity = [1.0, 0.0, -1.0]"))
+    );
+    // An oblique axis always crosses the plane.
+    let oblique = HALF_BEND.replace("axis = [0.0, 1.0, 0.0]", "axis = [1.0, 1.0, 0.0]");
+    let e = error_of(&oblique);
+    assert_eq!(e.field, "wall[roller].axis", "{e}");
+    assert_eq!(e.line, Some(line_of(&oblique, "axis = [1.0, 1.0, 0.0]")));
+    assert!(e.message.contains("oblique"), "{e}");
+}

@@ -42,17 +42,18 @@ fn lattice<const D: usize>(n: [usize; D], dx: f64) -> Vec<Vector<D>> {
         .collect()
 }
 
-/// A 2D block of `n` particles at spacing `dx` (from the origin), at rest, with its bottom row
-/// held fixed by a `[[boundary]]` named "base", running to `end_time`.
-fn block_held_at_its_base(n: [usize; 2], dx: f64, end_time: f64) -> Model<2> {
+/// A block of `n` particles at spacing `dx` (from the origin), at rest, with its lowest layer
+/// along the last axis held fixed by a `[[boundary]]` named "base", running to `end_time`.
+fn block_held_at_its_base<const D: usize>(n: [usize; D], dx: f64, end_time: f64) -> Model<D> {
     let positions = lattice(n, dx);
+    // The base is the lowest layer along the last axis.
     let bottom: Vec<usize> = (0..positions.len())
-        .filter(|&i| positions[i].y < dx)
+        .filter(|&i| positions[i][D - 1] < dx)
         .collect();
     let mut m = model(
         positions,
         dx,
-        |_| Vector::<2>::zeros(),
+        |_| Vector::<D>::zeros(),
         Setup {
             end_time,
             ..Setup::default()
@@ -62,8 +63,8 @@ fn block_held_at_its_base(n: [usize; 2], dx: f64, end_time: f64) -> Model<2> {
         name: "base".into(),
         body: 0,
         particles: bottom,
-        velocity: Vector::<2>::zeros(),
-        components: [true, true],
+        velocity: Vector::<D>::zeros(),
+        components: [true; D],
         amplitude: None,
     });
     m

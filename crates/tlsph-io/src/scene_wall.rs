@@ -1,0 +1,356 @@
+//! The `[[wall]]` tables: a rigid plane, disc, ball or cylinder with its friction and motion,
+//! checked against the bodies' starting positions and the symmetry planes (numerics.md §13
+//! `[C]`; the finite shapes are ours).
+
+use crate::scene::{axis_index, history_key, parse_amplitude, point_text, Context, SceneError};
+use crate::scene_file::{SymmetryPlaneTable, WallTable};
+use tlsph_math::Vector;
+use tlsph_solver::{BodyDescription, WallDescription, WallMotion, WallShape};
+
+/// The wall of table `w` named `name`, for `bodies` as placed and the scene's
+/// `symmetry_planes`.
+pub(crate) fn build_wall<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    name: String,
+    bodies: &[BodyDescription<D>],
+    symmetry_planes: &[SymmetryPlaneTable],
+) -> Result<WallDescription<D>, SceneError> {
+    let prefix = format!("wall[{name}]");
+    let key = |k: &str| format!("{prefix}.{k}");
+    let point = ctx.vector::<D>(&w.point, &key("point"))?;
+    let (shape, normal) = wall_shape::<D>(ctx, w, &key)?;
+    let unit = normal / normal.norm();
+    check_start(ctx, w, &shape, point, unit, bodies, &key)?;
+    let friction =
+        ctx.friction_coefficients(&w.friction, &w.static_friction, &w.friction_decay, &prefix)?;
+    let amplitude = parse_amplitude(
+        ctx,
+        &w.ramp_time,
+        &w.ramp_shape,
+        &w.amplitude,
+        &w.amplitude_shape,
+        &key,
+    )?;
+    let motion = match &w.velocity {
+        Some(v) => {
+            let velocity = ctx.vector::<D>(v, &key("velocity"))?;
+            // A plane that lies along a symmetry plane's normal, or a cylinder whose axis is
+            // that normal, and slides along it would slide the other way in the mirrored half:
+            // with friction, not a symmetric model (frictionless, the sliding is not felt; a
+            // wall across the normal is mirrored into a second wall, moving as its mirror
+            // image; the finite shapes are checked below).
+            let lies_along = |a: usize| match shape {
+                WallShape::Plane => normal[a] == 0.0,
+                WallShape::Cylinder { axis, .. } => axis[a].abs() == axis.norm(),
+                WallShape::Disc { .. } | WallShape::Ball { .. } => false,
+            };
+            let sliding_across_a_mirror = symmetry_planes.iter().find(|p| {
+                axis_index(p.axis.get_ref()).is_some_and(|a| {
+                    a < D && lies_along(a) && velocity[a] != 0.0 && friction.is_frictional()
+                })
+            });
+            if let Some(plane) = sliding_across_a_mirror {
+                return Err(ctx.error(
+                    &v.span(),
+                    &key("velocity"),
+                    format!(
+                        "slides along {}, the normal of a symmetry plane: its friction would drag the mirrored half the other way, so the model is not symmetric",
+                        plane.axis.get_ref()
+                    ),
+                ));
+            }
+            Some(WallMotion {
+                velocity,
+                amplitude,
+            })
+        }
+        None => {
+            if let Some((k, span)) = history_key(&w.ramp_time, &w.amplitude) {
+                return Err(ctx.error(
+                    &span,
+                    &key(k),
+                    format!(
+                        "a fixed wall has nothing to scale in time; give a `velocity` or drop `{k}`"
+                    ),
+                ));
+            }
+            None
+        }
+    };
+    let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
+    check_symmetry(ctx, w, &shape, point, unit, sliding, symmetry_planes, &key)?;
+    Ok(WallDescription {
+        name,
+        point,
+        normal,
+        friction,
+        motion,
+        shape,
+    })
+}
+
+/// The wall's shape from `shape`, `radius`, `normal` and `axis`, and its normal as given (the
+/// last coordinate axis for a ball or a cylinder, which have none).
+fn wall_shape<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    key: &dyn Fn(&str) -> String,
+) -> Result<(WallShape<D>, Vector<D>), SceneError> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Kind {
+        Plane,
+        Disc,
+        Ball,
+        Cylinder,
+    }
+    let default_kind = if w.radius.is_some() {
+        Kind::Disc
+    } else {
+        Kind::Plane
+    };
+    let kind = ctx.keyword(
+        w.shape.as_ref(),
+        &key("shape"),
+        "wall shape",
+        default_kind,
+        &[
+            ("plane", Kind::Plane),
+            ("disc", Kind::Disc),
+            ("ball", Kind::Ball),
+            ("cylinder", Kind::Cylinder),
+        ],
+    )?;
+    let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
+    if kind == Kind::Cylinder && D != 3 {
+        return Err(ctx.error(
+            &shape_span,
+            &key("shape"),
+            format!("a cylinder wall needs a 3D scene, got {D}D (in 2D, shape = \"ball\" is the cylinder in plane strain)"),
+        ));
+    }
+    let radius = match (&w.radius, kind) {
+        (None, Kind::Plane) => 0.0,
+        (Some(r), Kind::Plane) => {
+            return Err(ctx.error(
+                &r.span(),
+                &key("radius"),
+                "a plane wall has no radius (shape = \"disc\", \"ball\" or \"cylinder\" has)"
+                    .into(),
+            ))
+        }
+        (None, _) => {
+            return Err(ctx.error(
+                &shape_span,
+                &key("radius"),
+                "is required by a disc, ball or cylinder wall".into(),
+            ))
+        }
+        (Some(r), _) if D < 2 => {
+            return Err(ctx.error(
+                &r.span(),
+                &key("radius"),
+                "a 1D wall is a point; a finite wall needs a 2D or 3D scene".into(),
+            ))
+        }
+        (Some(r), _) => ctx.positive(r, &key("radius"))?,
+    };
+    let non_zero = |v: &toml::Spanned<Vec<f64>>, field: &str| {
+        let direction = ctx.vector::<D>(v, &key(field))?;
+        if direction.norm() == 0.0 {
+            return Err(ctx.error(&v.span(), &key(field), "must not be zero".into()));
+        }
+        Ok(direction)
+    };
+    // A ball or cylinder has no normal; the others need one. The last axis stands in.
+    let radial = matches!(kind, Kind::Ball | Kind::Cylinder);
+    let normal =
+        match (&w.normal, radial) {
+            (Some(n), true) => return Err(ctx.error(
+                &n.span(),
+                &key("normal"),
+                "a ball or cylinder wall has no normal (it pushes away from its centre or axis)"
+                    .into(),
+            )),
+            (None, true) => {
+                let mut last = Vector::<D>::zeros();
+                last[D - 1] = 1.0;
+                last
+            }
+            (None, false) => {
+                return Err(ctx.error(
+                    &w.name.span(),
+                    &key("normal"),
+                    "is required by a plane or disc wall".into(),
+                ))
+            }
+            (Some(n), false) => non_zero(n, "normal")?,
+        };
+    let axis = match (&w.axis, kind) {
+        (Some(a), Kind::Cylinder) => non_zero(a, "axis")?,
+        (None, Kind::Cylinder) => {
+            return Err(ctx.error(
+                &shape_span,
+                &key("axis"),
+                "is required by a cylinder wall".into(),
+            ))
+        }
+        (Some(a), _) => {
+            return Err(ctx.error(
+                &a.span(),
+                &key("axis"),
+                "only a cylinder wall has an axis".into(),
+            ))
+        }
+        (None, _) => Vector::<D>::zeros(),
+    };
+    let shape = match kind {
+        Kind::Plane => WallShape::Plane,
+        Kind::Disc => WallShape::Disc { radius },
+        Kind::Ball => WallShape::Ball { radius },
+        Kind::Cylinder => WallShape::Cylinder { radius, axis },
+    };
+    Ok((shape, normal))
+}
+
+/// No particle may start inside a ball or cylinder, nor behind a plane or a disc's face.
+fn check_start<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    shape: &WallShape<D>,
+    point: Vector<D>,
+    unit: Vector<D>,
+    bodies: &[BodyDescription<D>],
+    key: &dyn Fn(&str) -> String,
+) -> Result<(), SceneError> {
+    // Distance from the ball's centre or the cylinder's axis.
+    let inside = |what: &str, r: f64, distance: &dyn Fn(&Vector<D>) -> f64| {
+        for body in bodies {
+            if let Some(x) = body.positions.iter().find(|x| distance(x) < r) {
+                return Err(ctx.error(
+                    &w.point.span(),
+                    &key("point"),
+                    format!(
+                        "body `{}` starts inside the {what}: its particle at [{}] is {:.3e} from the {}, less than the radius {r:e}",
+                        body.name,
+                        point_text(x),
+                        distance(x),
+                        if what == "ball" { "centre" } else { "axis" },
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    };
+    let disc_radius = match *shape {
+        WallShape::Ball { radius } => return inside("ball", radius, &|x| (x - point).norm()),
+        WallShape::Cylinder { radius, axis } => {
+            let axis = axis / axis.norm();
+            return inside("cylinder", radius, &|x| {
+                let offset = x - point;
+                (offset - axis * offset.dot(&axis)).norm()
+            });
+        }
+        WallShape::Plane => None,
+        WallShape::Disc { radius } => Some(radius),
+    };
+    // Of a finite wall only what lies in front of or behind its face can be on the wrong
+    // side; beyond its rim a body may be anywhere.
+    let in_footprint = |x: &Vector<D>| {
+        disc_radius.is_none_or(|r| {
+            let offset = x - point;
+            (offset - unit * offset.dot(&unit)).norm() <= r
+        })
+    };
+    for body in bodies {
+        let behind = body
+            .positions
+            .iter()
+            .filter(|x| in_footprint(x))
+            .map(|x| (x, (x - point).dot(&unit)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((x, d)) = behind.filter(|(_, d)| *d < 0.0) {
+            let face = if disc_radius.is_some() {
+                "disc"
+            } else {
+                "plane"
+            };
+            return Err(ctx.error(
+                &w.point.span(),
+                &key("point"),
+                format!(
+                    "body `{}` starts behind the wall: its particle at [{}] is {:.3e} on the far side of the {face} (particles must start on the side the normal points to)",
+                    body.name,
+                    point_text(x),
+                    -d
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The mirrored half of a model meets the wall's mirror image. A finite wall crossing a
+/// symmetry plane must be its own mirror image: a disc (whose face lies across the plane), a
+/// ball or a cylinder lying along the plane centred on it and not moving across it; a
+/// cylinder along the plane's normal always is (its sliding is checked with the velocity); an
+/// oblique cylinder never.
+#[allow(clippy::too_many_arguments)]
+fn check_symmetry<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    shape: &WallShape<D>,
+    point: Vector<D>,
+    unit: Vector<D>,
+    sliding: impl Fn(usize) -> bool,
+    symmetry_planes: &[SymmetryPlaneTable],
+    key: &dyn Fn(&str) -> String,
+) -> Result<(), SceneError> {
+    // Only a finite shape (which has a radius) can cross a plane.
+    let Some(radius_span) = w.radius.as_ref().map(|r| r.span()) else {
+        return Ok(());
+    };
+    for plane in symmetry_planes {
+        let Some(a) = axis_index(plane.axis.get_ref()).filter(|&a| a < D) else {
+            continue;
+        };
+        let position = *plane.position.get_ref();
+        let off_centre =
+            |r: f64| (point[a] - position).abs() < r && (point[a] != position || sliding(a));
+        let (what, problem) = match *shape {
+            WallShape::Plane => continue,
+            WallShape::Disc { radius } => ("disc", unit[a] == 0.0 && off_centre(radius)),
+            WallShape::Ball { radius } => ("ball", off_centre(radius)),
+            WallShape::Cylinder { radius, axis } => {
+                let along = axis[a].abs() / axis.norm();
+                if along == 1.0 {
+                    continue;
+                }
+                if along > 0.0 {
+                    let axis_span = w.axis.as_ref().map_or(radius_span, |a| a.span());
+                    return Err(ctx.error(
+                        &axis_span,
+                        &key("axis"),
+                        format!(
+                            "the cylinder's axis is oblique to the symmetry plane {} = {}, so it crosses the plane and its mirror image is another cylinder; lay the axis along the plane or along its normal",
+                            plane.axis.get_ref(),
+                            position
+                        ),
+                    ));
+                }
+                ("cylinder", off_centre(radius))
+            }
+        };
+        if problem {
+            return Err(ctx.error(
+                &radius_span,
+                &key("radius"),
+                format!(
+                    "the {what} crosses the symmetry plane {} = {position} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the {what} on the plane and move it along the plane only, or keep it clear of the plane",
+                    plane.axis.get_ref(),
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
