@@ -585,6 +585,7 @@ impl<const D: usize> Simulation<D> {
             particles: &self.particles,
             bonds: &self.bonds,
             pairs: self.updated.as_ref().map(|u| &u.pairs),
+            time: self.time,
         };
         for booked in &mut self.effects {
             if let Some(limit) = booked.effect.time_step_limit(&at) {
@@ -2004,11 +2005,18 @@ fn build_effects<const D: usize>(
             }
         };
         let name = &wall.name;
+        // A moving wall advances at most C_cfl min h per step (RigidWall::with_travel_limit).
+        let travel = bodies
+            .iter()
+            .filter(|b| !b.range.is_empty())
+            .map(|b| (model.config.cfl * b.smoothing_length, b.range.start))
+            .fold((f64::INFINITY, usize::MAX), min_by_value_then_index);
         match wall.shape {
             WallShape::Plane => {
                 let plane = RigidPlane::new(point, normal, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
+                    travel,
                     RigidWall::new(name, plane, motion),
                     coefficients,
                 );
@@ -2018,6 +2026,7 @@ fn build_effects<const D: usize>(
                 let disc = FlatDisc::new(point, normal, radius, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
+                    travel,
                     RigidWall::new(name, disc, motion),
                     coefficients,
                 );
@@ -2027,6 +2036,7 @@ fn build_effects<const D: usize>(
                 let ball = RigidBall::new(point, radius, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
+                    travel,
                     RigidWall::new(name, ball, motion),
                     coefficients,
                 );
@@ -2041,6 +2051,7 @@ fn build_effects<const D: usize>(
                 let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
                 push_wall(
                     &mut effects,
+                    travel,
                     RigidWall::new(name, cylinder, motion),
                     coefficients,
                 );
@@ -2317,13 +2328,16 @@ fn contact_pairs<const D: usize>(
     }
 }
 
-/// Adds a wall of shape `G` and, when its surface has friction, its friction effect right
-/// after it (so the friction sees this step's normal kick).
+/// Adds a wall of shape `G`, with its travel limit per step (`length`, a particle with that
+/// h; it binds only if the wall moves), and, when its surface has friction, its friction
+/// effect right after it (so the friction sees this step's normal kick).
 fn push_wall<const D: usize, G: WallGeometry<D> + Clone + 'static>(
     effects: &mut Vec<BookedEffect<D>>,
+    (length, particle): (f64, usize),
     wall: RigidWall<D, G>,
     coefficients: FrictionCoefficients,
 ) {
+    let wall = wall.with_travel_limit(length, particle);
     let friction = coefficients
         .is_frictional()
         .then(|| wall.friction(coefficients));
@@ -2688,6 +2702,7 @@ mod penalty_contact_tests {
             particles: &sim.particles,
             bonds: &sim.bonds,
             pairs: None,
+            time: 0.0,
         };
         let (count, surface, normal) = contact.surface_state(&at);
         let index = |x: usize, y: usize| y * 10 + x;

@@ -49,6 +49,8 @@ pub(crate) struct Configuration<'a, const D: usize> {
     pub bonds: &'a Bonds<D>,
     /// Current-configuration pairs (updated-Lagrangian formulation only).
     pub pairs: Option<&'a crate::updated_lagrangian::CurrentPairs<D>>,
+    /// Time t^n of the configuration \[s\].
+    pub time: f64,
 }
 
 /// Whether particle `i` takes part in the sums (it has not failed).

@@ -417,6 +417,7 @@ impl<const D: usize> Effect<D> for PenaltyContact<D> {
                 particles: ctx.particles,
                 bonds: ctx.bonds,
                 pairs: ctx.pairs,
+                time: ctx.time,
             });
         }
         self.prepared = false;

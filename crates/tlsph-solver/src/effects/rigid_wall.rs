@@ -13,7 +13,7 @@
 //! wall's whole force on the particles): the spring's energy changes by −F·(v − v_w), so
 //! kinetic + internal + this column is constant, as for a fixed wall.
 
-use super::{Effect, EffectContext};
+use super::{Configuration, Effect, EffectContext};
 use crate::model::WallMotion;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -41,6 +41,9 @@ pub struct RigidWall<const D: usize, G> {
     last_power: Option<(f64, f64)>,
     /// Per-chunk partial sums (reused every step): stored energy and whole force.
     chunk_sums: Vec<(f64, Vector<D>)>,
+    /// Moving wall: the longest travel per step, C_cfl min h, and a particle of the body with
+    /// that h (see [`Self::with_travel_limit`]).
+    travel_limit: Option<(f64, usize)>,
 }
 
 impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
@@ -56,7 +59,20 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
             work: 0.0,
             last_power: None,
             chunk_sums: Vec::new(),
+            travel_limit: None,
         }
+    }
+
+    /// A moving wall votes Δt ≤ `length` / |v_w(t^n)|: it advances at most `length`
+    /// (C_cfl min h over the bodies, the bound the CFL condition puts on a particle's own
+    /// travel, numerics.md §7) per step, so a wall faster than sound still enters the
+    /// particles' contact spheres over several steps. It binds only when the wall is faster
+    /// than c + |v| of the particle limiting the CFL step (about the sound speed or more);
+    /// otherwise the step is unchanged. `particle`: a particle with that h, reported as
+    /// limiting.
+    pub(crate) fn with_travel_limit(mut self, length: f64, particle: usize) -> Self {
+        self.travel_limit = Some((length, particle));
+        self
     }
 
     /// Coulomb friction with `coefficients` on this wall's contacts, as an effect of its own
@@ -127,6 +143,12 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for RigidWa
 
     fn stored_energy(&self) -> Option<f64> {
         Some(self.stored - self.work)
+    }
+
+    fn time_step_limit(&mut self, at: &Configuration<'_, D>) -> Option<(f64, usize)> {
+        let (length, particle) = self.travel_limit?;
+        let speed = self.motion.as_ref()?.velocity_at(at.time).norm();
+        (speed > 0.0).then(|| (length / speed, particle))
     }
 
     fn resultant(&self) -> Option<Vector<D>> {
