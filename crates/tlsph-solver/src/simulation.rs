@@ -1529,8 +1529,8 @@ impl<const D: usize> Simulation<D> {
                 // With a softening law and a failure criterion on one material, the larger of
                 // the two damages (both read 1 once the particle has failed).
                 match (self.plastic[b].damage(k), self.damage[b].damage(k)) {
-                    (Some(a), Some(b)) => a.max(b),
-                    (a, b) => a.or(b).unwrap_or(0.0),
+                    (Some(criterion), Some(softening)) => criterion.max(softening),
+                    (criterion, softening) => criterion.or(softening).unwrap_or(0.0),
                 }
             }
             ParticleField::Temperature => {
@@ -1968,13 +1968,13 @@ fn build_effects<const D: usize>(
         let direction_ok =
             direction.is_none_or(|(_, n)| n.norm() > 0.0 && n.iter().all(|x| x.is_finite()));
         if !(direction_ok && wall.point.iter().all(|x| x.is_finite())) {
+            let needs = match direction {
+                Some((name, _)) => format!("a finite point and a finite, non-zero {name}"),
+                None => "a finite point (its centre)".into(),
+            };
             return Err(SetupError::InvalidConfig {
                 field: "wall",
-                message: format!(
-                    "wall `{}` needs a finite point and a finite, non-zero {}",
-                    wall.name,
-                    direction.map_or("centre", |(name, _)| name)
-                ),
+                message: format!("wall `{}` needs {needs}", wall.name),
             });
         }
         let h = per_particle(&|b| b.smoothing_length);

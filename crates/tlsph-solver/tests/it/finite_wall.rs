@@ -230,3 +230,52 @@ fn a_wall_faster_than_sound_advances_at_most_a_cfl_length_per_step() {
         worst / peak
     );
 }
+
+#[test]
+fn the_solver_refuses_a_cylinder_without_an_axis_or_outside_3d() {
+    // A library user builds the model without the scene reader's checks.
+    let cylinder = |axis: Vector<3>| {
+        let mut m = block_held_at_its_base([4, 4, 4], 0.05, 1.0);
+        m.effects.walls.push(WallDescription {
+            name: "roller".into(),
+            point: Vector::<3>::new(0.1, 0.1, 1.0),
+            normal: Vector::<3>::zeros(),
+            friction: FrictionCoefficients::single(0.0),
+            motion: None,
+            shape: WallShape::Cylinder { radius: 0.5, axis },
+        });
+        Simulation::new(m)
+    };
+    assert!(cylinder(Vector::<3>::y()).is_ok(), "its normal is not used");
+    for axis in [Vector::<3>::zeros(), Vector::<3>::new(f64::NAN, 1.0, 0.0)] {
+        match cylinder(axis) {
+            Err(SetupError::InvalidConfig { field, message }) => {
+                assert_eq!(field, "wall");
+                assert!(message.contains("non-zero axis"), "{message}");
+            }
+            other => panic!("axis {axis:?}: expected a wall error, got {other:?}"),
+        }
+    }
+    let mut flat = block_held_at_its_base([4, 4], 0.05, 1.0);
+    flat.effects.walls.push(WallDescription {
+        name: "roller".into(),
+        point: Vector::<2>::new(0.1, 1.0),
+        normal: Vector::<2>::y(),
+        friction: FrictionCoefficients::single(0.0),
+        motion: None,
+        shape: WallShape::Cylinder {
+            radius: 0.5,
+            axis: Vector::<2>::x(),
+        },
+    });
+    match Simulation::new(flat) {
+        Err(SetupError::InvalidConfig { field, message }) => {
+            assert_eq!(field, "wall");
+            assert!(
+                message.contains("3D") && message.contains("ball"),
+                "{message}"
+            );
+        }
+        other => panic!("expected a wall error, got {other:?}"),
+    }
+}
