@@ -229,7 +229,7 @@ impl PenaltyLaw {
             force -= t * (phi * dw / t_len);
         }
         if self.has_friction() {
-            let v_t = relative_velocity - normal * relative_velocity.dot(normal);
+            let v_t = tlsph_math::across(relative_velocity, normal);
             let speed = v_t.norm();
             if speed > 0.0 {
                 // Kinetic Coulomb force, or the force that stops the sliding (stick) while it

@@ -272,8 +272,7 @@ impl<const D: usize> RigidCylinder<D> {
     /// The part of x − point across the axis (its length is the distance r to the axis).
     #[inline]
     pub fn radial_offset(&self, x: Vector<D>) -> Vector<D> {
-        let offset = x - self.point;
-        offset - self.axis * offset.dot(&self.axis)
+        tlsph_math::across(&(x - self.point), &self.axis)
     }
 }
 
@@ -396,7 +395,7 @@ pub fn wall_friction_acceleration<const D: usize>(
     friction: FrictionCoefficients,
     kick: f64,
 ) -> Vector<D> {
-    let v_t = velocity - normal * velocity.dot(&normal);
+    let v_t = tlsph_math::across(&velocity, &normal);
     let speed = v_t.norm();
     if !(normal_acceleration > 0.0 && speed > 0.0) {
         return Vector::zeros();

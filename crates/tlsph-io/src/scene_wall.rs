@@ -4,7 +4,7 @@
 
 use crate::scene::{axis_index, history_key, parse_amplitude, point_text, Context, SceneError};
 use crate::scene_file::{SymmetryPlaneTable, WallTable};
-use tlsph_math::Vector;
+use tlsph_math::{across, Vector};
 use tlsph_solver::{BodyDescription, WallDescription, WallMotion, WallShape};
 
 /// The wall of table `w` named `name`, for `bodies` as placed and the scene's
@@ -246,22 +246,15 @@ fn check_start<const D: usize>(
         WallShape::Ball { radius } => return inside("ball", radius, &|x| (x - point).norm()),
         WallShape::Cylinder { radius, axis } => {
             let axis = axis / axis.norm();
-            return inside("cylinder", radius, &|x| {
-                let offset = x - point;
-                (offset - axis * offset.dot(&axis)).norm()
-            });
+            return inside("cylinder", radius, &|x| across(&(x - point), &axis).norm());
         }
         WallShape::Plane => None,
         WallShape::Disc { radius } => Some(radius),
     };
     // Of a finite wall only what lies in front of or behind its face can be on the wrong
     // side; beyond its rim a body may be anywhere.
-    let in_footprint = |x: &Vector<D>| {
-        disc_radius.is_none_or(|r| {
-            let offset = x - point;
-            (offset - unit * offset.dot(&unit)).norm() <= r
-        })
-    };
+    let in_footprint =
+        |x: &Vector<D>| disc_radius.is_none_or(|r| across(&(x - point), &unit).norm() <= r);
     for body in bodies {
         let behind = body
             .positions

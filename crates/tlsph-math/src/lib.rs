@@ -54,6 +54,13 @@ pub fn project<const D: usize>(m: &Tensor3) -> Tensor<D> {
     Tensor::<D>::from_fn(|i, j| m[(i, j)])
 }
 
+/// The part of `v` across the unit vector `unit`, v − (v·n̂) n̂: a particle's offset from a
+/// cylinder's axis or within a plane, a tangential velocity.
+#[inline]
+pub fn across<const D: usize>(v: &Vector<D>, unit: &Vector<D>) -> Vector<D> {
+    v - unit * v.dot(unit)
+}
+
 /// Embeds a `D`-vector into 3D with zero padding.
 #[inline]
 pub fn vector_to_3d<const D: usize>(v: &Vector<D>) -> Vector3 {
@@ -201,6 +208,16 @@ mod tests {
         assert_eq!(e[(2, 2)], 1.0);
         assert_eq!(project::<2>(&e), m);
         assert_eq!(embed_with_zeros(&m)[(2, 2)], 0.0);
+    }
+
+    #[test]
+    fn the_part_across_a_unit_vector_is_normal_to_it() {
+        let n = Vector3::new(0.0, 0.6, 0.8);
+        let v = Vector3::new(1.0, 2.0, -3.0);
+        let t = across(&v, &n);
+        assert_relative_eq!(t.dot(&n), 0.0, epsilon = 1e-15);
+        // v·n̂ = −1.2: v = t + (−1.2) n̂.
+        assert_relative_eq!(t, Vector3::new(1.0, 2.72, -2.04), epsilon = 1e-15);
     }
 
     #[test]
