@@ -12,13 +12,13 @@
 use crate::model::{BulkViscosity, DamageModel, ElasticDamage, MaterialModel};
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, ReferenceJacobian,
-    Viscosity, MIN_PARTICLES_PER_TASK,
+    constitutive_view, ConstitutiveStep, NoViscosity, RateKinematics, ReferenceJacobian, Viscosity,
+    MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{degrade_tensile_part, BENZ_ASPHAUG_CRACK_SPEED_RATIO};
 use tlsph_materials::{max_principal_value, GradyKipp, LinearElastic, PeerlingsSoftening};
-use tlsph_math::{embed_with_identity, embed_with_zeros, project, Tensor, Tensor3};
+use tlsph_math::{embed_with_identity, embed_with_zeros, Tensor3};
 
 /// Failure status values stored in a particle's state (as in `plasticity.rs`).
 const INTACT: u8 = 0;
@@ -439,60 +439,29 @@ fn update<const D: usize, L: Law, V: Viscosity, R: ReferenceJacobian + ?Sized>(
     p: &mut Particles<D>,
     points: &mut [DamagePoint],
 ) {
-    let (c0, length, dt, rho0) = (
-        step.sound_speed0,
-        step.smoothing_length,
-        step.dt,
-        step.density0,
-    );
-    let r = step.range.clone();
-    let f_all = &p.deformation_gradient[r.clone()];
-    let f_dot_all = &p.deformation_rate[r.clone()];
-    p.stress[r.clone()]
-        .par_iter_mut()
-        .zip(p.pk1[r.clone()].par_iter_mut())
-        .zip(p.jacobian[r.clone()].par_iter_mut())
-        .zip(p.internal_energy[r].par_iter_mut())
+    let dt = step.dt;
+    let (f_all, f_dot_all, slots) = constitutive_view(p, step.range.clone());
+    slots
         .zip(points.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(k, ((((sigma, pk1), jac), energy), point))| {
+        .for_each(|(k, (slots, point))| {
             if point.status != INTACT {
-                // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
-                *sigma = Tensor3::zeros();
-                *pk1 = Tensor::<D>::zeros();
-                *jac = 1.0;
+                slots.clear_failed();
                 return;
             }
             let f = embed_with_identity(&f_all[k]);
             let f_dot = embed_with_zeros(&f_dot_all[k]);
-            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
-            let effective = elastic.jaumann_update(&point.effective, &d, &w, dt);
-            let sigma_new = softening.soften(k, point, &f, effective, dt);
-            // cof F relative to the reference gives P relative to it; J is the total one.
-            let (cofactor, j_ref) = cofactor_and_determinant(&f);
-            let j0 = step.reference_jacobian.at(k);
-            let (j, j_half) = (j_ref * j0, j_half * j0);
-            // Artificial pressure on the force-driving stress only (numerics.md §10.2). A
-            // particle failing now leaves this step's force sums, so neither its stress nor
+            let at = RateKinematics::new(&f, &f_dot, dt, step.reference_jacobian.at(k));
+            let effective = elastic.jaumann_update(&point.effective, &at.d, &at.w, dt);
+            let stress = softening.soften(k, point, &f, effective, dt);
+            // A particle failing now leaves this step's force sums, so neither its stress nor
             // q enters its last energy increment (they would not pair with any force work).
             let q = if point.status == FAILED_NOW {
                 0.0
             } else {
-                viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length)
+                step.artificial_pressure(viscosity, &at)
             };
-            if step.book_energy {
-                *energy += dt * j_half / rho0
-                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                        .component_mul(&d)
-                        .sum();
-            }
-            *sigma = sigma_new;
-            *jac = j;
-            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
-                project(&((sigma_new - Tensor3::identity() * q) * cofactor))
-            } else {
-                Tensor::<D>::from_element(f64::NAN)
-            };
+            at.store(step, stress, q, slots);
         });
 }

@@ -10,8 +10,8 @@ use crate::model::{
 };
 use crate::particles::Particles;
 use crate::step::{
-    cofactor_and_determinant, midpoint_rates, ConstitutiveStep, NoViscosity, ReferenceJacobian,
-    Viscosity, MIN_PARTICLES_PER_TASK,
+    constitutive_view, ConstitutiveStep, NoViscosity, RateKinematics, ReferenceJacobian, Viscosity,
+    MIN_PARTICLES_PER_TASK,
 };
 use rayon::prelude::*;
 use tlsph_materials::damage::{stress_triaxiality, TRIAXIALITY_STRESS_FLOOR};
@@ -19,7 +19,7 @@ use tlsph_materials::{
     equivalent_strain_rate, EquationOfState, JohnsonCookStrength, LinearEos, MieGruneisen,
     PlasticReturn, PolynomialEos, VonMisesPlasticity,
 };
-use tlsph_math::{deviator, embed_with_identity, embed_with_zeros, project, Tensor, Tensor3};
+use tlsph_math::{deviator, embed_with_identity, embed_with_zeros, Tensor3};
 
 /// Per-particle plastic state of a body: only what its material needs.
 #[derive(Debug, Clone)]
@@ -490,7 +490,6 @@ fn update<
         step,
         viscosity,
     } = *laws;
-    let (c0, length) = (step.sound_speed0, step.smoothing_length);
     let dt = step.dt;
     let rho0 = step.density0;
     let shear = material.elastic.shear_modulus();
@@ -503,44 +502,32 @@ fn update<
         };
     let thermal = material.thermal.as_ref();
     let room_temperature = thermal.map_or(0.0, |t| t.room_temperature);
-    let r = step.range.clone();
-    let f_all = &p.deformation_gradient[r.clone()];
-    let f_dot_all = &p.deformation_rate[r.clone()];
-    p.stress[r.clone()]
-        .par_iter_mut()
-        .zip(p.pk1[r.clone()].par_iter_mut())
-        .zip(p.jacobian[r.clone()].par_iter_mut())
-        .zip(p.internal_energy[r].par_iter_mut())
+    let (f_all, f_dot_all, slots) = constitutive_view(p, step.range.clone());
+    slots
         .zip(points.par_iter_mut())
         .zip(soft.par_iter_mut())
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(k, (((((sigma, pk1), jac), energy), point), soft))| {
-            let f = embed_with_identity(&f_all[k]);
+        .for_each(|(k, ((slots, point), soft))| {
             if (T::HAS_FAILURE && point.status() > 0.0) || X::failed_before(soft) {
-                // Failed: no stress, no bonds; only its mass and momentum remain (§9.3).
-                *sigma = Tensor3::zeros();
-                *pk1 = Tensor::<D>::zeros();
-                *jac = 1.0;
+                slots.clear_failed();
                 return;
             }
+            let f = embed_with_identity(&f_all[k]);
             let f_dot = embed_with_zeros(&f_dot_all[k]);
-            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
-            // cof F relative to the reference gives P relative to it; J is the total one.
-            let (cofactor, j_ref) = cofactor_and_determinant(&f);
-            let j0 = step.reference_jacobian.at(k);
-            let (j, j_half) = (j_ref * j0, j_half * j0);
+            let at = RateKinematics::new(&f, &f_dot, dt, step.reference_jacobian.at(k));
+            let (d, j) = (&at.d, at.j);
             // Elastic predictor of the deviator with an exactly orthogonal rotation.
-            let start = X::start(soft, sigma);
+            let start = X::start(soft, slots.stress);
             let s_old = deviator(&start);
             let p_old = -start.trace() / 3.0;
-            let half = w * (0.5 * dt);
-            let q = match (Tensor3::identity() - half).try_inverse() {
+            let half = at.w * (0.5 * dt);
+            let rotation = match (Tensor3::identity() - half).try_inverse() {
                 Some(inv) => inv * (Tensor3::identity() + half),
                 None => Tensor3::identity(),
             };
-            let trial = q * s_old * q.transpose() + deviator(&d) * (2.0 * shear * dt);
-            let energy_v = rho0 * *energy;
+            let trial = rotation * s_old * rotation.transpose() + deviator(d) * (2.0 * shear * dt);
+            let energy_v = rho0 * *slots.internal_energy;
             // The EOS is a state function of J: it reads the density carried across bond
             // rebuilds (a neighbour's removal changes the estimate det F, not the volume).
             let j_eos = j * step.jacobian_carry.map_or(1.0, |c| c[k]);
@@ -548,11 +535,10 @@ fn update<
                 .pressure(p_old, d.trace(), dt, j_eos, energy_v)
                 .max(min_pressure);
             let temperature = point.temperature().unwrap_or(room_temperature);
-            let rate = equivalent_strain_rate(&d);
+            let rate = equivalent_strain_rate(d);
             let ret = strength.return_map(&trial, shear, point.plastic_strain(), rate, temperature);
             let mut sigma_new = ret.deviator - Tensor3::identity() * pressure;
-            // Artificial pressure on the force-driving stress only (numerics.md §10.2).
-            let mut q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
+            let mut q = step.artificial_pressure(viscosity, &at);
             // Plastic work per unit mass at the end-of-step flow stress: σ̄ Δε̄p / ρ.
             let flow = (1.5 * ret.deviator.component_mul(&ret.deviator).sum()).sqrt();
             point.heat(flow * ret.plastic_strain_increment * j / rho0, thermal);
@@ -588,18 +574,6 @@ fn update<
                     q = 0.0;
                 }
             }
-            if step.book_energy {
-                *energy += dt * j_half / rho0
-                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                        .component_mul(&d)
-                        .sum();
-            }
-            *sigma = sigma_new;
-            *jac = j;
-            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
-                project(&((sigma_new - Tensor3::identity() * q) * cofactor))
-            } else {
-                Tensor::<D>::from_element(f64::NAN)
-            };
+            at.store(step, sigma_new, q, slots);
         });
 }

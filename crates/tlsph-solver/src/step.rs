@@ -142,6 +142,122 @@ pub(crate) fn midpoint_rates(f: &Tensor3, f_dot: &Tensor3, dt: f64) -> (Tensor3,
     (sym(&l), (l - l.transpose()) * 0.5, j_half)
 }
 
+/// The midpoint kinematics of one particle's rate-form constitutive update (R 5.2, 5.26–5.32):
+/// D and W at n−½ from [`midpoint_rates`], and det F, cof F at n relative to the reference.
+pub(crate) struct RateKinematics {
+    /// Rate of deformation D^{n−½}.
+    pub d: Tensor3,
+    /// Spin W^{n−½}.
+    pub w: Tensor3,
+    /// Total J^{n−½} = J0 det F^{n−½} (NaN when F^{n−½} is singular).
+    pub j_half: f64,
+    /// Total J^n = J0 det F^n.
+    pub j: f64,
+    /// det F^n relative to the reference configuration.
+    j_ref: f64,
+    /// cof F^n relative to the reference: P = σ cof F is then relative to it too.
+    cofactor: Tensor3,
+}
+
+impl RateKinematics {
+    /// The kinematics of F^n, Ḟ^{n−½} over Δt, with J0 = det F0 of the reference (1 without a
+    /// reference update).
+    #[inline]
+    pub fn new(f: &Tensor3, f_dot: &Tensor3, dt: f64, j0: f64) -> Self {
+        let (d, w, j_half) = midpoint_rates(f, f_dot, dt);
+        let (cofactor, j_ref) = cofactor_and_determinant(f);
+        Self {
+            d,
+            w,
+            j_half: j_half * j0,
+            j: j_ref * j0,
+            j_ref,
+            cofactor,
+        }
+    }
+
+    /// The end every rate-form update shares: with σ^n = `stress` and the artificial pressure
+    /// `q` on the force-driving stress only (numerics.md §10.2), books
+    /// e += Δt J^{n−½}/ρ0 (½(σ^{n−1} + σ^n) − q I):D (R 4.12, 4.28) when the step books energy,
+    /// then stores σ^n, J^n and P^n = (σ^n − q I) cof F (R 5.32, numerics.md §4.4). A singular
+    /// or non-finite F leaves P = NaN, which the inversion check reports.
+    #[inline]
+    pub fn store<const D: usize, R: ReferenceJacobian + ?Sized>(
+        &self,
+        step: &ConstitutiveStep<R>,
+        stress: Tensor3,
+        q: f64,
+        slots: ConstitutiveSlots<'_, D>,
+    ) {
+        if step.book_energy {
+            *slots.internal_energy += step.dt * self.j_half / step.density0
+                * (0.5 * (*slots.stress + stress) - Tensor3::identity() * q)
+                    .component_mul(&self.d)
+                    .sum();
+        }
+        *slots.stress = stress;
+        *slots.jacobian = self.j;
+        *slots.pk1 = if self.j_ref != 0.0 && self.j_ref.is_finite() {
+            project(&((stress - Tensor3::identity() * q) * self.cofactor))
+        } else {
+            Tensor::<D>::from_element(f64::NAN)
+        };
+    }
+}
+
+/// One particle's state written by a constitutive update: its entries of [`Particles`].
+pub(crate) struct ConstitutiveSlots<'a, const D: usize> {
+    /// σ: σ^{n−1} on entry, σ^n on exit.
+    pub stress: &'a mut Tensor3,
+    /// P^n.
+    pub pk1: &'a mut Tensor<D>,
+    /// J^n.
+    pub jacobian: &'a mut f64,
+    /// e: e^{n−1} on entry, e^n on exit.
+    pub internal_energy: &'a mut f64,
+}
+
+impl<const D: usize> ConstitutiveSlots<'_, D> {
+    /// A failed particle: no stress and J = 1, from now on; only its mass and momentum remain
+    /// (numerics.md §9.3).
+    #[inline]
+    pub fn clear_failed(self) {
+        *self.stress = Tensor3::zeros();
+        *self.pk1 = Tensor::<D>::zeros();
+        *self.jacobian = 1.0;
+    }
+}
+
+/// What a constitutive update over the particle range `r` reads, F^n and Ḟ^{n−½}, and a
+/// parallel iterator over what it writes, each particle's [`ConstitutiveSlots`] in order.
+pub(crate) fn constitutive_view<const D: usize>(
+    p: &mut Particles<D>,
+    r: Range<usize>,
+) -> (
+    &[Tensor<D>],
+    &[Tensor<D>],
+    impl IndexedParallelIterator<Item = ConstitutiveSlots<'_, D>>,
+) {
+    let slots = p.stress[r.clone()]
+        .par_iter_mut()
+        .zip(p.pk1[r.clone()].par_iter_mut())
+        .zip(p.jacobian[r.clone()].par_iter_mut())
+        .zip(p.internal_energy[r.clone()].par_iter_mut())
+        .map(
+            |(((stress, pk1), jacobian), internal_energy)| ConstitutiveSlots {
+                stress,
+                pk1,
+                jacobian,
+                internal_energy,
+            },
+        );
+    (
+        &p.deformation_gradient[r.clone()],
+        &p.deformation_rate[r],
+        slots,
+    )
+}
+
 /// det F0 of the reference configuration relative to the initial one, per body-local
 /// particle: the constitutive update multiplies its det F (taken relative to the reference)
 /// by it wherever the density enters (ρ = ρ0 / (J0 J), EOS, energy, bulk viscosity).
@@ -192,6 +308,21 @@ pub(crate) struct ConstitutiveStep<'a, R: ReferenceJacobian + ?Sized = InitialRe
     pub book_energy: bool,
 }
 
+impl<R: ReferenceJacobian + ?Sized> ConstitutiveStep<'_, R> {
+    /// The artificial pressure q of `viscosity` at these kinematics: density ρ0/J, sound speed
+    /// c0 √J, length h (numerics.md §10.2).
+    #[inline]
+    pub fn artificial_pressure<V: Viscosity>(&self, viscosity: &V, at: &RateKinematics) -> f64 {
+        let j = at.j;
+        viscosity.pressure(
+            at.d.trace(),
+            self.density0 / j,
+            self.sound_speed0 * j.max(0.0).sqrt(),
+            self.smoothing_length,
+        )
+    }
+}
+
 /// Artificial pressure added to the force-driving stress (numerics.md §10.2).
 pub(crate) trait Viscosity: Sync {
     /// q for tr D, density ρ, sound speed c and length ℓ; 0 when not compressing.
@@ -233,47 +364,17 @@ pub(crate) fn update_jaumann_rate<const D: usize, V: Viscosity, R: ReferenceJaco
     viscosity: &V,
     p: &mut Particles<D>,
 ) {
-    let c0 = step.sound_speed0;
-    let length = step.smoothing_length;
-    let dt = step.dt;
-    let rho0 = step.density0;
-    let r = step.range.clone();
-    let f_all = &p.deformation_gradient[r.clone()];
-    let f_dot_all = &p.deformation_rate[r.clone()];
-    p.stress[r.clone()]
-        .par_iter_mut()
-        .zip(p.pk1[r.clone()].par_iter_mut())
-        .zip(p.jacobian[r.clone()].par_iter_mut())
-        .zip(p.internal_energy[r].par_iter_mut())
+    let (f_all, f_dot_all, slots) = constitutive_view(p, step.range.clone());
+    slots
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(k, (((sigma, pk1), jac), energy))| {
+        .for_each(|(k, slots)| {
             let f = embed_with_identity(&f_all[k]);
             let f_dot = embed_with_zeros(&f_dot_all[k]);
-            let (d, w, j_half) = midpoint_rates(&f, &f_dot, dt);
-            let sigma_new = material.jaumann_update(sigma, &d, &w, dt);
-            // cof F relative to the reference gives P relative to it; J is the total one.
-            let (cofactor, j_ref) = cofactor_and_determinant(&f);
-            let j0 = step.reference_jacobian.at(k);
-            let (j, j_half) = (j_ref * j0, j_half * j0);
-            // Artificial pressure on the force-driving stress only (numerics.md §10.2).
-            let q = viscosity.pressure(d.trace(), rho0 / j, c0 * j.max(0.0).sqrt(), length);
-            let driving = sigma_new - Tensor3::identity() * q;
-            if step.book_energy {
-                *energy += dt * j_half / rho0
-                    * (0.5 * (*sigma + sigma_new) - Tensor3::identity() * q)
-                        .component_mul(&d)
-                        .sum();
-            }
-            *sigma = sigma_new;
-            *jac = j;
-            // P = J σ F⁻ᵀ = σ cof F (R 5.32, numerics.md §4.4); a singular or non-finite F
-            // leaves NaN for the check.
-            *pk1 = if j_ref != 0.0 && j_ref.is_finite() {
-                project(&(driving * cofactor))
-            } else {
-                Tensor::<D>::from_element(f64::NAN)
-            };
+            let at = RateKinematics::new(&f, &f_dot, step.dt, step.reference_jacobian.at(k));
+            let stress = material.jaumann_update(slots.stress, &at.d, &at.w, step.dt);
+            let q = step.artificial_pressure(viscosity, &at);
+            at.store(step, stress, q, slots);
         });
 }
 
@@ -291,18 +392,12 @@ pub(crate) fn update_green_lagrange<const D: usize, R: ReferenceJacobian + ?Size
 ) {
     let dt = step.dt;
     let rho0 = step.density0;
-    let r = step.range.clone();
-    let f_all = &p.deformation_gradient[r.clone()];
-    let f_dot_all = &p.deformation_rate[r.clone()];
+    let (f_all, f_dot_all, slots) = constitutive_view(p, step.range.clone());
     let green_lagrange = |f: &Tensor3| (f.transpose() * f - Tensor3::identity()) * 0.5;
-    p.stress[r.clone()]
-        .par_iter_mut()
-        .zip(p.pk1[r.clone()].par_iter_mut())
-        .zip(p.jacobian[r.clone()].par_iter_mut())
-        .zip(p.internal_energy[r].par_iter_mut())
+    slots
         .enumerate()
         .with_min_len(MIN_PARTICLES_PER_TASK)
-        .for_each(|(k, (((sigma, pk1), jac), energy))| {
+        .for_each(|(k, slots)| {
             let f = embed_with_identity(&f_all[k]);
             let f_prev = f - embed_with_zeros(&f_dot_all[k]) * dt;
             let e = green_lagrange(&f);
@@ -310,12 +405,13 @@ pub(crate) fn update_green_lagrange<const D: usize, R: ReferenceJacobian + ?Size
             let s = material.second_piola_kirchhoff(&e);
             let s_prev = material.second_piola_kirchhoff(&e_prev);
             if step.book_energy {
-                *energy += 0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
+                *slots.internal_energy +=
+                    0.5 * (s + s_prev).component_mul(&(e - e_prev)).sum() / rho0;
             }
             let j = f.determinant();
-            *jac = j;
+            *slots.jacobian = j;
             let fs = f * s;
-            *pk1 = project(&fs);
-            *sigma = fs * f.transpose() / j;
+            *slots.pk1 = project(&fs);
+            *slots.stress = fs * f.transpose() / j;
         });
 }
