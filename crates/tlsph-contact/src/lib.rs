@@ -15,7 +15,8 @@
 //!   spring, [`FlatDisc`]: a flat wall of finite size (a disc, a segment in 2D) with a rounded
 //!   rim, [`RigidBall`]: a rigid sphere (an indenter), [`RigidCylinder`]: a rigid cylinder of
 //!   unbounded length (a roller), all behind [`WallGeometry`]; and their Coulomb friction
-//!   [`wall_friction_acceleration`]. Both friction laws take
+//!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
+//!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take
 //!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the
 //!   sliding coefficient with speed (numerics.md §13).
 //!
@@ -52,8 +53,8 @@ pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
 pub use wall::{
-    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidCylinder,
-    RigidPlane, WallGeometry, WALL_STIFFNESS_FACTOR,
+    spin_velocity, surface_point, wall_friction_acceleration, FlatDisc, FrictionCoefficients,
+    RigidBall, RigidCylinder, RigidPlane, WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 
 /// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list

@@ -4,7 +4,7 @@
 //! plane moving by d(t) at v_w is this plane seen from the wall: pass x − d(t) and v − v_w
 //! (the solver's moving walls do so).
 
-use tlsph_math::Vector;
+use tlsph_math::{vector_to_3d, Vector, Vector3};
 
 /// Penalty stiffness in units of m (c0/h)²: the contact oscillator then has ω = 2 c0/h, so
 /// ω Δt = 2 C_cfl ≤ 1.6 for C_cfl ≤ 0.8 — inside the leap-frog limit ω Δt < 2 without
@@ -46,6 +46,38 @@ pub trait WallGeometry<const D: usize>: std::fmt::Debug + Send + Sync {
 
     /// Penalty stiffness per unit mass k/m of particle `i` \[1/s²\].
     fn stiffness_per_mass(&self, i: usize) -> f64;
+
+    /// Contact radius Δx/2 of particle `i` \[m\]: with `contact` giving (δ, n̂) at x, the
+    /// nearest point of the wall's surface is x − (Δx/2 − δ) n̂ (see [`surface_point`]).
+    fn contact_radius(&self, i: usize) -> f64;
+}
+
+/// The point of the wall's surface nearest to particle `i` at `x`, x − (Δx/2 − δ) n̂, from its
+/// contact (δ, n̂) with `wall` (numerics.md §13 `[C]`): the foot of the normal on a plane or a
+/// disc's face, the nearest rim point past a disc's rim, the radial point on a ball or a
+/// cylinder. For a touching particle (δ > 0, or just touching); δ is 0 for any particle clear
+/// of the wall, so for those the point is not on the surface.
+#[inline]
+pub fn surface_point<const D: usize, G: WallGeometry<D> + ?Sized>(
+    wall: &G,
+    i: usize,
+    x: Vector<D>,
+    (delta, direction): (f64, Vector<D>),
+) -> Vector<D> {
+    x - direction * (wall.contact_radius(i) - delta)
+}
+
+/// Velocity ω × r of the surface point at `offset` r from the axis of a wall spinning at the
+/// angular velocity `omega` about an axis through its centre (ours, not in the theses;
+/// numerics.md §13 `[C]`). A wall spins only about an axis of its own symmetry (a plane's or a
+/// disc's normal, a cylinder's axis, any axis of a ball), so the spin moves its surface without
+/// moving its shape: the contact law is unchanged, and only friction, which reads the surface
+/// velocity, feels it. In 2D `omega` is (0, 0, ω_z) and r lies in the plane; the result's
+/// first D components are returned.
+#[inline]
+pub fn spin_velocity<const D: usize>(omega: &Vector3, offset: &Vector<D>) -> Vector<D> {
+    let v = omega.cross(&vector_to_3d(offset));
+    Vector::<D>::from_fn(|k, _| v[k])
 }
 
 /// An unbounded rigid plane with the per-particle penalty law (numerics.md §13 `[C]`).
@@ -105,6 +137,11 @@ impl<const D: usize> WallGeometry<D> for RigidPlane<D> {
     #[inline]
     fn stiffness_per_mass(&self, i: usize) -> f64 {
         RigidPlane::stiffness_per_mass(self, i)
+    }
+
+    #[inline]
+    fn contact_radius(&self, i: usize) -> f64 {
+        self.springs.radius[i]
     }
 }
 
@@ -182,6 +219,11 @@ impl<const D: usize> WallGeometry<D> for FlatDisc<D> {
     fn stiffness_per_mass(&self, i: usize) -> f64 {
         self.springs.stiffness_per_mass[i]
     }
+
+    #[inline]
+    fn contact_radius(&self, i: usize) -> f64 {
+        self.springs.radius[i]
+    }
 }
 
 /// A rigid ball (ours, not in the theses): the sphere of radius R about `centre` (a disc in
@@ -229,6 +271,11 @@ impl<const D: usize> WallGeometry<D> for RigidBall<D> {
     #[inline]
     fn stiffness_per_mass(&self, i: usize) -> f64 {
         self.springs.stiffness_per_mass[i]
+    }
+
+    #[inline]
+    fn contact_radius(&self, i: usize) -> f64 {
+        self.springs.radius[i]
     }
 }
 
@@ -298,6 +345,11 @@ impl<const D: usize> WallGeometry<D> for RigidCylinder<D> {
     #[inline]
     fn stiffness_per_mass(&self, i: usize) -> f64 {
         self.springs.stiffness_per_mass[i]
+    }
+
+    #[inline]
+    fn contact_radius(&self, i: usize) -> f64 {
+        self.springs.radius[i]
     }
 }
 

@@ -525,15 +525,19 @@ fn write_forces(
     write_csv(path, &header, rows)
 }
 
-/// The moving walls of `model`, `wall_<name>` with the displacement of the plane from its
-/// place at t = 0 (`WallMotion::displacement_at`, what the solver shifts the plane by).
+/// The moving walls of `model` (not one that only spins: it stays in place), `wall_<name>`
+/// with the displacement of the plane from its place at t = 0 (`WallMotion::displacement_at`,
+/// what the solver shifts the plane by).
 fn wall_tracks<const D: usize>(model: &Model<D>) -> Vec<WallTrack<'_>> {
     model
         .effects
         .walls
         .iter()
         .filter_map(|w| {
-            let motion = w.motion.as_ref()?;
+            let motion = w
+                .motion
+                .as_ref()
+                .filter(|m| m.spin.is_none() || m.velocity.iter().any(|v| *v != 0.0))?;
             let track: Box<dyn Fn(f64) -> tlsph_math::Vector3> =
                 Box::new(move |t| tlsph_math::vector_to_3d(&motion.displacement_at(t)));
             Some((format!("wall_{}", w.name), track))

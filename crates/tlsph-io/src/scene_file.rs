@@ -145,8 +145,13 @@ pub(crate) struct WallTable {
     /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`, or the
     /// cylinder of this radius about its axis.
     pub radius: Option<Spanned<f64>>,
-    /// Direction of a cylinder's axis (through `point`).
+    /// Direction of a cylinder's axis (through `point`), or of a spinning ball's spin axis.
     pub axis: Option<Spanned<Vec<f64>>>,
+    /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
+    /// normal, a cylinder's or a ball's `axis`, z for a ball in 2D \[rad/s\].
+    pub spin: Option<Spanned<f64>>,
+    /// Duration of the spin's smooth start-up \[s\].
+    pub spin_ramp_time: Option<Spanned<f64>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

@@ -4,8 +4,10 @@
 
 use crate::scene::{axis_index, history_key, parse_amplitude, point_text, Context, SceneError};
 use crate::scene_file::{SymmetryPlaneTable, WallTable};
-use tlsph_math::{across, Vector};
-use tlsph_solver::{BodyDescription, WallDescription, WallMotion, WallShape};
+use tlsph_math::{across, vector_to_3d, Vector, Vector3};
+use tlsph_solver::{
+    BodyDescription, RampShape, VelocityRamp, WallDescription, WallMotion, WallShape,
+};
 
 /// The wall of table `w` named `name`, for `bodies` as placed and the scene's
 /// `symmetry_planes`.
@@ -32,8 +34,36 @@ pub(crate) fn build_wall<const D: usize>(
         &w.amplitude_shape,
         &key,
     )?;
-    let motion = match &w.velocity {
-        Some(v) => {
+    let spin = match &w.spin {
+        Some(s) => Some(wall_spin::<D>(
+            ctx,
+            w,
+            s,
+            &shape,
+            unit,
+            &friction,
+            symmetry_planes,
+            &key,
+        )?),
+        None => None,
+    };
+    let spin_ramp = match (&w.spin_ramp_time, spin) {
+        (Some(t), Some(_)) => Some(VelocityRamp {
+            duration: ctx.positive(t, &key("spin_ramp_time"))?,
+            shape: RampShape::Smooth,
+        }),
+        (Some(t), None) => {
+            return Err(ctx.error(
+                &t.span(),
+                &key("spin_ramp_time"),
+                "needs a `spin` to start up".into(),
+            ))
+        }
+        (None, _) => None,
+    };
+    let history = history_key(&w.ramp_time, &w.amplitude);
+    let motion = match (&w.velocity, spin) {
+        (Some(v), spin) => {
             let velocity = ctx.vector::<D>(v, &key("velocity"))?;
             // A plane that lies along a symmetry plane's normal, or a cylinder whose axis is
             // that normal, and slides along it would slide the other way in the mirrored half:
@@ -62,20 +92,29 @@ pub(crate) fn build_wall<const D: usize>(
             }
             Some(WallMotion {
                 velocity,
+                spin,
                 amplitude,
+                spin_ramp,
             })
         }
-        None => {
-            if let Some((k, span)) = history_key(&w.ramp_time, &w.amplitude) {
+        (None, spin) => {
+            if let Some((k, span)) = history {
                 return Err(ctx.error(
                     &span,
                     &key(k),
-                    format!(
-                        "a fixed wall has nothing to scale in time; give a `velocity` or drop `{k}`"
-                    ),
+                    if spin.is_some() {
+                        format!("a wall that only spins has no velocity to scale in time; give a `velocity` or drop `{k}` (a spin starts up with `spin_ramp_time`)")
+                    } else {
+                        format!("a fixed wall has nothing to scale in time; give a `velocity` or drop `{k}`")
+                    },
                 ));
             }
-            None
+            spin.map(|spin| WallMotion {
+                velocity: Vector::<D>::zeros(),
+                spin: Some(spin),
+                amplitude,
+                spin_ramp,
+            })
         }
     };
     let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
@@ -195,11 +234,12 @@ fn wall_shape<const D: usize>(
                 "is required by a cylinder wall".into(),
             ))
         }
+        (Some(a), Kind::Ball) if w.spin.is_some() && D == 3 => non_zero(a, "axis")?,
         (Some(a), _) => {
             return Err(ctx.error(
                 &a.span(),
                 &key("axis"),
-                "only a cylinder wall has an axis".into(),
+                "only a cylinder wall, or a spinning ball in 3D, has an axis".into(),
             ))
         }
         (None, _) => Vector::<D>::zeros(),
@@ -207,10 +247,71 @@ fn wall_shape<const D: usize>(
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
+        // A ball's axis (3D, spinning) is only the spin's: the shape has none.
         Kind::Ball => WallShape::Ball { radius },
         Kind::Cylinder => WallShape::Cylinder { radius, axis },
     };
     Ok((shape, normal))
+}
+
+/// The wall's angular velocity from `spin` (ω about the wall's own axis, right-handed): along
+/// a plane's or a disc's normal, a cylinder's axis or a 3D ball's `axis`, along z for a 2D
+/// ball. A spin is felt only through friction, and is its own mirror image only about a
+/// symmetry plane's normal.
+#[allow(clippy::too_many_arguments)]
+fn wall_spin<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    spin: &toml::Spanned<f64>,
+    shape: &WallShape<D>,
+    unit: Vector<D>,
+    friction: &tlsph_solver::FrictionCoefficients,
+    symmetry_planes: &[SymmetryPlaneTable],
+    key: &dyn Fn(&str) -> String,
+) -> Result<Vector3, SceneError> {
+    let omega = *spin.get_ref();
+    let refuse = |message: String| Err(ctx.error(&spin.span(), &key("spin"), message));
+    if !omega.is_finite() {
+        return refuse(format!("must be a finite number, got {omega}"));
+    }
+    if !friction.is_frictional() {
+        return refuse(
+            "a spin is felt only through friction; give `friction` (or `static_friction`), or drop `spin`"
+                .into(),
+        );
+    }
+    let axis = match (D, shape) {
+        (3, WallShape::Plane | WallShape::Disc { .. }) => vector_to_3d(&unit),
+        (3, WallShape::Cylinder { axis, .. }) => vector_to_3d(&axis.normalize()),
+        (3, WallShape::Ball { .. }) => match &w.axis {
+            Some(a) => vector_to_3d(&ctx.vector::<D>(a, &key("axis"))?).normalize(),
+            None => return refuse("a spinning ball in 3D needs an `axis` to spin about".into()),
+        },
+        (2, WallShape::Ball { .. }) => Vector3::z(),
+        (2, _) => {
+            return refuse(
+                "in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape"
+                    .into(),
+            )
+        }
+        _ => return refuse(format!("a {D}D wall cannot spin")),
+    };
+    // A rotation about an axis normal to a mirror is its own mirror image; about any other
+    // axis the mirrored half would turn the other way.
+    for plane in symmetry_planes {
+        let Some(a) = axis_index(plane.axis.get_ref()).filter(|&a| a < D) else {
+            continue;
+        };
+        if axis[a].abs() != 1.0 {
+            return refuse(format!(
+                "the wall spins about {}, not about the normal of the symmetry plane {} = {}: the mirrored half would spin the other way, so the model is not symmetric",
+                point_text(&axis),
+                plane.axis.get_ref(),
+                plane.position.get_ref()
+            ));
+        }
+    }
+    Ok(axis * omega)
 }
 
 /// No particle may start inside a ball or cylinder, nor behind a plane or a disc's face.

@@ -7,7 +7,7 @@ use tlsph_materials::{
     EquationOfState, GradyKipp, JohnsonCookFailure, JohnsonCookStrength, LinearElastic,
     MaxPlasticStrainFailure, MaxStressFailure, PeerlingsSoftening, VonMisesPlasticity,
 };
-use tlsph_math::Vector;
+use tlsph_math::{Vector, Vector3};
 
 /// How kernel gradients are formed in the reference configuration (numerics.md §5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -696,23 +696,39 @@ pub enum WallShape<const D: usize> {
     },
 }
 
-/// Translation of a rigid wall at a prescribed velocity (a platen, a piston, a conveyor
-/// belt; ours, not in the theses): v_w(t) = r(t) v with the optional [`Amplitude`] r (a
-/// start-up ramp, or a table such as press, hold and withdraw), so the plane's point is at
-/// X_w + v ∫₀ᵗ r.
+/// Prescribed motion of a rigid wall (a platen, a piston, a conveyor belt, a driven roller, a
+/// turntable; ours, not in the theses): the translation v_w(t) = r(t) v with the optional
+/// [`Amplitude`] r (a start-up ramp, or a table such as press, hold and withdraw), so the
+/// wall's point is at X_w + v ∫₀ᵗ r, and the spin ω(t) = r_s(t) ω about an axis through that
+/// point, with its own optional start-up ramp r_s (a roller pressed in and held while it keeps
+/// turning).
 #[derive(Debug, Clone, PartialEq)]
 pub struct WallMotion<const D: usize> {
     /// Full velocity v of the plane \[m/s\] (any direction: along the normal it presses or
     /// withdraws, across it the wall slides under the particles).
     pub velocity: Vector<D>,
+    /// Full angular velocity ω \[rad/s\] about an axis through the wall's point, (0, 0, ω_z)
+    /// in 2D; `None`: the wall does not spin. Only about an axis of the wall's own symmetry (a
+    /// plane's or a disc's normal, a cylinder's axis, any axis of a ball; in 2D only a ball),
+    /// so the spin moves the wall's surface, which its friction reads
+    /// (`tlsph_contact::spin_velocity`), and not its shape.
+    pub spin: Option<Vector3>,
     /// Time history r(t) of the velocity; `None`: the full velocity from t = 0.
     pub amplitude: Option<Amplitude>,
+    /// Start-up ramp r_s(t) of the spin; `None`: the full spin from t = 0.
+    pub spin_ramp: Option<VelocityRamp>,
 }
 
 impl<const D: usize> WallMotion<D> {
     /// Velocity of the plane at time `t` \[m/s\].
     pub fn velocity_at(&self, t: f64) -> Vector<D> {
         self.velocity * self.amplitude.as_ref().map_or(1.0, |r| r.factor(t))
+    }
+
+    /// Angular velocity of the wall at time `t` \[rad/s\], if it spins.
+    pub fn spin_at(&self, t: f64) -> Option<Vector3> {
+        let factor = self.spin_ramp.as_ref().map_or(1.0, |r| r.factor(t));
+        self.spin.map(|omega| omega * factor)
     }
 
     /// Displacement of the plane from its position at t = 0, at time `t` \[m\].

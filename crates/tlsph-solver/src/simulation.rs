@@ -1993,6 +1993,17 @@ fn build_effects<const D: usize>(
             if let Some(amplitude) = &motion.amplitude {
                 amplitude.validate().map_err(wall_error)?;
             }
+            if let Some(omega) = motion.spin {
+                check_spin(&wall.shape, wall.normal, omega, coefficients).map_err(wall_error)?;
+            }
+            if let Some(ramp) = &motion.spin_ramp {
+                if motion.spin.is_none() {
+                    return Err(wall_error("has a spin ramp but no spin".into()));
+                }
+                crate::model::Amplitude::from(*ramp)
+                    .validate()
+                    .map_err(wall_error)?;
+            }
         }
         let (point, normal, motion) = (wall.point, wall.normal, wall.motion.clone());
         let checked_radius = |radius: f64| {
@@ -2018,7 +2029,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, plane, motion),
-                    coefficients,
+                    (coefficients, point),
                 );
             }
             WallShape::Disc { radius } => {
@@ -2028,7 +2039,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, disc, motion),
-                    coefficients,
+                    (coefficients, point),
                 );
             }
             WallShape::Ball { radius } => {
@@ -2038,7 +2049,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, ball, motion),
-                    coefficients,
+                    (coefficients, point),
                 );
             }
             WallShape::Cylinder { radius, axis } => {
@@ -2053,7 +2064,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, cylinder, motion),
-                    coefficients,
+                    (coefficients, point),
                 );
             }
         }
@@ -2328,19 +2339,55 @@ fn contact_pairs<const D: usize>(
     }
 }
 
+/// A wall spins only about an axis of its own symmetry, so that the spin moves its surface and
+/// not its shape (`WallMotion::spin`): ω finite, along a plane's or a disc's normal or a
+/// cylinder's axis, any for a ball; in 2D only a ball spins, about z. The spin is felt only
+/// through friction, so a frictionless wall may not spin.
+fn check_spin<const D: usize>(
+    shape: &WallShape<D>,
+    normal: Vector<D>,
+    omega: tlsph_math::Vector3,
+    coefficients: FrictionCoefficients,
+) -> Result<(), String> {
+    if !omega.iter().all(|w| w.is_finite()) {
+        return Err(format!("needs a finite spin, got {omega:?}"));
+    }
+    if !coefficients.is_frictional() {
+        return Err("a spin is felt only through friction; give the wall a friction coefficient, or no spin".into());
+    }
+    let axis = match (D, shape) {
+        (3, WallShape::Plane | WallShape::Disc { .. }) => Some(tlsph_math::vector_to_3d(&normal)),
+        (3, WallShape::Cylinder { axis, .. }) => Some(tlsph_math::vector_to_3d(axis)),
+        (3, WallShape::Ball { .. }) => None,
+        (2, WallShape::Ball { .. }) => Some(tlsph_math::Vector3::z()),
+        (2, _) => {
+            return Err("in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape".into())
+        }
+        _ => return Err(format!("a {D}D wall cannot spin")),
+    };
+    let Some(axis) = axis else { return Ok(()) };
+    if omega.cross(&axis).norm() > 1e-12 * omega.norm() * axis.norm() {
+        return Err(format!(
+            "the spin {omega:?} must be about the wall's own axis {axis:?} (a plane's or a disc's normal, a cylinder's axis; about z in 2D): about any other axis the wall's shape would move"
+        ));
+    }
+    Ok(())
+}
+
 /// Adds a wall of shape `G`, with its travel limit per step (`length`, a particle with that
-/// h; it binds only if the wall moves), and, when its surface has friction, its friction
-/// effect right after it (so the friction sees this step's normal kick).
+/// h; it binds only if the wall moves), and, when its surface has friction `coefficients`,
+/// its friction effect right after it (so the friction sees this step's normal kick; a spin
+/// turns about the axis through `point`, the wall's point).
 fn push_wall<const D: usize, G: WallGeometry<D> + Clone + 'static>(
     effects: &mut Vec<BookedEffect<D>>,
     (length, particle): (f64, usize),
     wall: RigidWall<D, G>,
-    coefficients: FrictionCoefficients,
+    (coefficients, point): (FrictionCoefficients, Vector<D>),
 ) {
     let wall = wall.with_travel_limit(length, particle);
     let friction = coefficients
         .is_frictional()
-        .then(|| wall.friction(coefficients));
+        .then(|| wall.friction(coefficients, point));
     effects.push(BookedEffect::new(Box::new(wall)));
     if let Some(friction) = friction {
         effects.push(BookedEffect::new(Box::new(friction)));

@@ -1,11 +1,13 @@
-//! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball) and their
-//! Coulomb friction (numerics.md §13).
+//! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
+//! cylinder), the surface point and spin velocity their friction reads, and their Coulomb
+//! friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    wall_friction_acceleration, FlatDisc, FrictionCoefficients, RigidBall, RigidCylinder,
-    RigidPlane, Vector, WallGeometry, WALL_STIFFNESS_FACTOR,
+    spin_velocity, surface_point, wall_friction_acceleration, FlatDisc, FrictionCoefficients,
+    RigidBall, RigidCylinder, RigidPlane, Vector, WallGeometry, WALL_STIFFNESS_FACTOR,
 };
+use tlsph_math::Vector3;
 
 #[test]
 fn a_particle_is_pushed_back_by_its_half_spacing_penetration() {
@@ -342,4 +344,69 @@ fn inside_its_footprint_a_finite_wall_is_the_plane() {
             assert_eq!(segment.contact(0, at), plane.contact(0, at), "({x}, {y})");
         }
     }
+}
+
+#[test]
+fn the_surface_point_is_where_the_particle_meets_the_wall() {
+    // Contact radius ½ for every shape. Plane z = 0: the foot of the normal, for a particle
+    // just touching or pushed in (friction asks only for touching particles).
+    let plane = RigidPlane::<3>::new(
+        Vector::zeros(),
+        Vector::<3>::new(0.0, 0.0, 2.0),
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    for z in [-0.2, 0.3, 0.5] {
+        let x = Vector::<3>::new(1.5, -2.0, z);
+        let y = surface_point(&plane, 0, x, plane.contact(0, x));
+        assert_relative_eq!(y, Vector::<3>::new(1.5, -2.0, 0.0), epsilon = 1e-15);
+    }
+    // Disc of radius 2 in z = 0: past the rim, the nearest rim point.
+    let disc = disc();
+    let x = Vector::<3>::new(2.3, 0.0, 0.4);
+    let y = surface_point(&disc, 0, x, disc.contact(0, x));
+    assert_relative_eq!(y, Vector::<3>::new(2.0, 0.0, 0.0), epsilon = 1e-15);
+    // Ball of radius 2 about (1, 0, 0), cylinder of radius 2 about the x axis: on the surface,
+    // radially below the particle.
+    let ball = RigidBall::<3>::new(Vector::<3>::new(1.0, 0.0, 0.0), 2.0, &[1.2], &[3.0], &[1.0]);
+    let x = Vector::<3>::new(2.2, 1.6, 0.0);
+    let y = surface_point(&ball, 0, x, ball.contact(0, x));
+    assert_relative_eq!(y, Vector::<3>::new(2.2, 1.6, 0.0), epsilon = 1e-15);
+    let x = Vector::<3>::new(1.0, 0.0, 2.3);
+    let y = surface_point(&ball, 0, x, ball.contact(0, x));
+    assert_relative_eq!(y, Vector::<3>::new(1.0, 0.0, 2.0), epsilon = 1e-15);
+    let cylinder = RigidCylinder::<3>::new(
+        Vector::zeros(),
+        Vector::<3>::x(),
+        2.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let x = Vector::<3>::new(7.0, 1.8, 1.35);
+    let y = surface_point(&cylinder, 0, x, cylinder.contact(0, x));
+    assert_relative_eq!(y, Vector::<3>::new(7.0, 1.6, 1.2), epsilon = 1e-14);
+}
+
+#[test]
+fn a_spinning_surface_moves_at_omega_cross_its_offset_from_the_axis() {
+    // ω = 3 about z: at r = (2, 0, 0) the surface moves at (0, 6, 0); the offset along the
+    // axis does not count; in 2D the same spin turns the plane's point (0, −2) to (6, 0).
+    let omega = Vector3::new(0.0, 0.0, 3.0);
+    assert_eq!(
+        spin_velocity(&omega, &Vector::<3>::new(2.0, 0.0, 5.0)),
+        Vector::<3>::new(0.0, 6.0, 0.0)
+    );
+    assert_eq!(
+        spin_velocity(&omega, &Vector::<2>::new(0.0, -2.0)),
+        Vector::<2>::new(6.0, 0.0)
+    );
+    // About an oblique axis: perpendicular to the axis and to the offset, of size |ω| r.
+    let omega = Vector3::new(1.0, 2.0, 2.0);
+    let offset = Vector::<3>::new(0.5, -1.0, 4.0);
+    let v = spin_velocity(&omega, &offset);
+    assert!(v.dot(&omega).abs() < 1e-14 && v.dot(&offset).abs() < 1e-14);
+    let r = (offset - omega * (offset.dot(&omega) / 9.0)).norm();
+    assert_relative_eq!(v.norm(), 3.0 * r, max_relative = 1e-14);
 }

@@ -497,3 +497,83 @@ fn a_cylinder_across_a_symmetry_plane_must_be_its_own_mirror_image() {
     assert_eq!(e.line, Some(line_of(&oblique, "axis = [1.0, 1.0, 0.0]")));
     assert!(e.message.contains("oblique"), "{e}");
 }
+
+#[test]
+fn a_spin_is_read_about_the_walls_own_axis_and_checked() {
+    // The half bend without its symmetry plane: the roller spins about its axis (y).
+    let whole = HALF_BEND.replace("[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n", "");
+    assert_ne!(whole, HALF_BEND);
+    let spinning = whole.replace(
+        "velocity = [0.0, 0.0, -1.0]",
+        "friction = 0.3\nspin = 20.0\nspin_ramp_time = 1.0e-7",
+    );
+    let scene = parse_scene(&spinning, "spin.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    let motion = model.effects.walls[0].motion.as_ref().unwrap();
+    assert_eq!(motion.spin, Some(tlsph_math::Vector3::new(0.0, 20.0, 0.0)));
+    assert_eq!(motion.velocity, tlsph_math::Vector::<3>::zeros());
+    assert_eq!(
+        motion.spin_ramp,
+        Some(tlsph_solver::VelocityRamp {
+            duration: 1.0e-7,
+            shape: tlsph_solver::RampShape::Smooth
+        })
+    );
+    assert!(motion.amplitude.is_none());
+    // In 2D a ball spins about z.
+    let ball = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[wall]]\nname = \"roll\"\nshape = \"ball\"\npoint = [5.0e-3, 16.0e-3]\nradius = 5.0e-3\nfriction = 0.5\nspin = -3.0\n";
+    let scene = parse_scene(&ball, "roll.toml").unwrap();
+    let tlsph_io::DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    let spin = model.effects.walls[1].motion.as_ref().unwrap().spin;
+    assert_eq!(spin, Some(tlsph_math::Vector3::new(0.0, 0.0, -3.0)));
+    // What cannot spin, or would not be felt, or would break the mirror symmetry.
+    for (text, field, fragment) in [
+        (
+            whole.replace("velocity = [0.0, 0.0, -1.0]", "spin = 20.0"),
+            "wall[roller].spin",
+            "only through friction",
+        ),
+        (
+            spinning
+                .replace("shape = \"cylinder\"", "shape = \"ball\"")
+                .replace("axis = [0.0, 1.0, 0.0]\n", ""),
+            "wall[roller].spin",
+            "needs an `axis`",
+        ),
+        (
+            HALF_BEND.replace("velocity = [0.0, 0.0, -1.0]", "friction = 0.3\nspin = 20.0"),
+            "wall[roller].spin",
+            "not about the normal of the symmetry plane x = 0",
+        ),
+        (
+            TWO_BLOCKS.replace("GAP", "10.0e-3") + "friction = 0.5\nspin = 1.0\n",
+            "wall[floor].spin",
+            "only a ball may spin",
+        ),
+        (
+            ball.replace("spin = -3.0", "spin = nan"),
+            "wall[roll].spin",
+            "finite",
+        ),
+        (
+            ball.replace("spin = -3.0", "spin = -3.0\nramp_time = 1.0"),
+            "wall[roll].ramp_time",
+            "`spin_ramp_time`",
+        ),
+        (
+            TWO_BLOCKS.replace("GAP", "10.0e-3") + "spin_ramp_time = 1.0\n",
+            "wall[floor].spin_ramp_time",
+            "needs a `spin`",
+        ),
+    ] {
+        let e = error_of(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert!(e.message.contains(fragment), "{e}");
+        assert!(e.line.is_some(), "{e}");
+    }
+}

@@ -17,7 +17,9 @@ use super::{Configuration, Effect, EffectContext};
 use crate::model::WallMotion;
 use rayon::prelude::*;
 use std::sync::Arc;
-use tlsph_contact::{wall_friction_acceleration, FrictionCoefficients, WallGeometry};
+use tlsph_contact::{
+    spin_velocity, surface_point, wall_friction_acceleration, FrictionCoefficients, WallGeometry,
+};
 use tlsph_math::Vector;
 
 /// Particles per rayon task of the wall loops.
@@ -76,12 +78,18 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
     }
 
     /// Coulomb friction with `coefficients` on this wall's contacts, as an effect of its own
-    /// named `wall_<name>_friction` (to be applied right after the wall).
-    pub(crate) fn friction(&self, coefficients: FrictionCoefficients) -> WallFriction<D, G> {
+    /// named `wall_<name>_friction` (to be applied right after the wall). `point`: the wall's
+    /// point at t = 0, on the axis a spinning wall turns about.
+    pub(crate) fn friction(
+        &self,
+        coefficients: FrictionCoefficients,
+        point: Vector<D>,
+    ) -> WallFriction<D, G> {
         WallFriction {
             name: format!("{}_friction", self.name),
             geometry: Arc::clone(&self.geometry),
             motion: self.motion.clone(),
+            point,
             coefficients,
             resultant: Vector::zeros(),
         }
@@ -169,12 +177,17 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for RigidWa
 /// `wall_<name>_friction` column; its resultant, the tangential force of the wall on the
 /// particles, is reported as `wall_<name>_friction`. On a moving wall it acts on the velocity
 /// relative to the wall's at the middle of the kick, t^n + ½Δt* (of the step's; exact once
-/// the wall's start-up is over).
+/// the wall's start-up is over). On a spinning wall the wall's velocity at a particle is that
+/// of the surface point it touches, v_w + ω × (y − c) (`tlsph_contact::spin_velocity`, y the
+/// particle's `surface_point`, c the wall's point); the work the spin puts in through
+/// friction is booked in the same column.
 #[derive(Debug, Clone)]
 pub struct WallFriction<const D: usize, G> {
     name: String,
     geometry: Arc<G>,
     motion: Option<WallMotion<D>>,
+    /// The wall's point at t = 0 (the spin's axis passes through it).
+    point: Vector<D>,
     /// Kinetic and static friction coefficients (not both 0).
     coefficients: FrictionCoefficients,
     resultant: Vector<D>,
@@ -190,24 +203,21 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFri
     }
 
     fn accelerations(&mut self, ctx: &EffectContext<'_, D>, out: &mut [Vector<D>]) {
-        let p = ctx.particles;
         let wall = &*self.geometry;
-        let (mu, kick) = (self.coefficients, ctx.kick);
-        let shift = wall_shift(&self.motion, ctx.time);
+        let middle = ctx.time + 0.5 * ctx.kick;
         let wall_velocity = self
             .motion
             .as_ref()
-            .map_or(Vector::zeros(), |m| m.velocity_at(ctx.time + 0.5 * kick));
-        out.par_iter_mut()
-            .enumerate()
-            .with_min_len(MIN_PER_TASK)
-            .for_each(|(i, a)| {
-                let x = p.positions0[i] + p.displacements[i] - shift;
-                let (delta, direction) = wall.contact(i, x);
-                let a_n = wall.stiffness_per_mass(i) * delta;
-                let sliding = p.velocities[i] - wall_velocity;
-                *a = wall_friction_acceleration(a_n, sliding, direction, mu, kick);
-            });
+            .map_or(Vector::zeros(), |m| m.velocity_at(middle));
+        // A spinning wall adds ω × (y − c) at the surface point y (the axis through the
+        // wall's point c, in the wall's frame); a wall without spin has no such term.
+        match self.motion.as_ref().and_then(|m| m.spin_at(middle)) {
+            None => self.apply(ctx, out, |_, _, _| wall_velocity),
+            Some(omega) => self.apply(ctx, out, |i, x, contact| {
+                let y = surface_point(wall, i, x, contact);
+                wall_velocity + spin_velocity(&omega, &(y - self.point))
+            }),
+        }
     }
 
     fn resultant(&self) -> Option<Vector<D>> {
@@ -216,5 +226,31 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFri
 
     fn set_resultant(&mut self, force: Vector<D>) {
         self.resultant = force;
+    }
+}
+
+impl<const D: usize, G: WallGeometry<D>> WallFriction<D, G> {
+    /// The friction acceleration of every particle, with `surface_velocity(i, x, (δ, n̂))` the
+    /// velocity of the wall's surface where particle `i` at `x` (in the wall's frame) touches.
+    fn apply(
+        &self,
+        ctx: &EffectContext<'_, D>,
+        out: &mut [Vector<D>],
+        surface_velocity: impl Fn(usize, Vector<D>, (f64, Vector<D>)) -> Vector<D> + Sync,
+    ) {
+        let p = ctx.particles;
+        let wall = &*self.geometry;
+        let (mu, kick) = (self.coefficients, ctx.kick);
+        let shift = wall_shift(&self.motion, ctx.time);
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(MIN_PER_TASK)
+            .for_each(|(i, a)| {
+                let x = p.positions0[i] + p.displacements[i] - shift;
+                let contact = wall.contact(i, x);
+                let a_n = wall.stiffness_per_mass(i) * contact.0;
+                let sliding = p.velocities[i] - surface_velocity(i, x, contact);
+                *a = wall_friction_acceleration(a_n, sliding, contact.1, mu, kick);
+            });
     }
 }

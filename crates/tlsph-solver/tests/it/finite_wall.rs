@@ -164,6 +164,8 @@ fn press_and_withdraw<const D: usize>(
         friction: FrictionCoefficients::single(0.0),
         motion: Some(WallMotion {
             velocity: down,
+            spin: None,
+            spin_ramp: None,
             amplitude: Some(Amplitude::Table(table)),
         }),
         shape,
@@ -201,6 +203,8 @@ fn a_wall_faster_than_sound_advances_at_most_a_cfl_length_per_step() {
         friction: FrictionCoefficients::single(0.0),
         motion: Some(WallMotion {
             velocity: Vector::<2>::new(0.0, -speed),
+            spin: None,
+            spin_ramp: None,
             amplitude: None,
         }),
         shape: WallShape::Ball { radius: 0.5 },

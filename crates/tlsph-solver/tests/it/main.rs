@@ -14,6 +14,7 @@ mod penalty_contact;
 mod plasticity;
 mod prescribed;
 mod reference_update;
+mod spinning_wall;
 mod symmetry;
 mod updated_lagrangian;
 mod wall_friction;

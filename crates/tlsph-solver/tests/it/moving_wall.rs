@@ -31,6 +31,8 @@ fn piston_into_bar(speed: f64, amplitude: Option<Amplitude>, end_time: f64) -> M
         friction: FrictionCoefficients::single(0.0),
         motion: Some(WallMotion {
             velocity: Vector::<1>::new(speed),
+            spin: None,
+            spin_ramp: None,
             amplitude,
         }),
         shape: tlsph_solver::WallShape::Plane,
@@ -158,6 +160,8 @@ fn block_on_sliding_floor(v0: f64, floor: f64) -> Model<2> {
     );
     m.effects.walls[0].motion = Some(WallMotion {
         velocity: Vector::<2>::new(floor, 0.0),
+        spin: None,
+        spin_ramp: None,
         amplitude: None,
     });
     m
@@ -240,11 +244,15 @@ fn a_wall_motion_that_cannot_be_followed_is_refused_naming_the_wall() {
     };
     let message = refused(WallMotion {
         velocity: Vector::<1>::new(f64::NAN),
+        spin: None,
+        spin_ramp: None,
         amplitude: None,
     });
     assert!(message.contains("finite velocity"), "{message}");
     let message = refused(WallMotion {
         velocity: Vector::<1>::new(0.01),
+        spin: None,
+        spin_ramp: None,
         amplitude: Some(
             VelocityRamp {
                 duration: 0.0,
@@ -274,6 +282,8 @@ fn the_wall_travels_the_integral_of_its_ramped_velocity() {
         };
         let motion = WallMotion {
             velocity: Vector::<2>::new(3.0, -1.0),
+            spin: None,
+            spin_ramp: None,
             amplitude: Some(ramp.into()),
         };
         for t in [0.0, 0.3, 1.0, 1.9, 2.0, 5.0] {
@@ -291,6 +301,8 @@ fn the_wall_travels_the_integral_of_its_ramped_velocity() {
     }
     let steady = WallMotion {
         velocity: Vector::<2>::new(3.0, -1.0),
+        spin: None,
+        spin_ramp: None,
         amplitude: None,
     };
     assert_eq!(steady.displacement_at(2.0), Vector::<2>::new(6.0, -2.0));
