@@ -280,21 +280,14 @@ fn wall_spin<const D: usize>(
                 .into(),
         );
     }
-    let axis = match (D, shape) {
-        (3, WallShape::Plane | WallShape::Disc { .. }) => vector_to_3d(&unit),
-        (3, WallShape::Cylinder { axis, .. }) => vector_to_3d(&axis.normalize()),
-        (3, WallShape::Ball { .. }) => match &w.axis {
-            Some(a) => vector_to_3d(&ctx.vector::<D>(a, &key("axis"))?).normalize(),
-            None => return refuse("a spinning ball in 3D needs an `axis` to spin about".into()),
-        },
-        (2, WallShape::Ball { .. }) => Vector3::z(),
-        (2, _) => {
-            return refuse(
-                "in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape"
-                    .into(),
-            )
+    // The shape's own axis; a ball in 3D spins about the `axis` given.
+    let axis = match (shape.spin_axis(unit), &w.axis) {
+        (Err(why), _) => return refuse(why),
+        (Ok(Some(axis)), _) => axis,
+        (Ok(None), Some(a)) => vector_to_3d(&ctx.vector::<D>(a, &key("axis"))?).normalize(),
+        (Ok(None), None) => {
+            return refuse("a spinning ball in 3D needs an `axis` to spin about".into())
         }
-        _ => return refuse(format!("a {D}D wall cannot spin")),
     };
     // A rotation about an axis normal to a mirror is its own mirror image; about any other
     // axis the mirrored half would turn the other way.

@@ -696,6 +696,27 @@ pub enum WallShape<const D: usize> {
     },
 }
 
+impl<const D: usize> WallShape<D> {
+    /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its
+    /// own axis of symmetry, so the spin moves its surface and not its shape. `Ok(Some(ê))`: a
+    /// plane's or a disc's normal, a cylinder's axis (3D), z for a ball in 2D; `Ok(None)`: any
+    /// axis (a ball in 3D); `Err`: this wall cannot spin.
+    pub fn spin_axis(&self, normal: Vector<D>) -> Result<Option<Vector3>, String> {
+        match (D, self) {
+            (3, WallShape::Plane | WallShape::Disc { .. }) => {
+                Ok(Some(tlsph_math::vector_to_3d(&normal).normalize()))
+            }
+            (3, WallShape::Cylinder { axis, .. }) => {
+                Ok(Some(tlsph_math::vector_to_3d(axis).normalize()))
+            }
+            (3, WallShape::Ball { .. }) => Ok(None),
+            (2, WallShape::Ball { .. }) => Ok(Some(Vector3::z())),
+            (2, _) => Err("in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape".into()),
+            _ => Err(format!("a {D}D wall cannot spin")),
+        }
+    }
+}
+
 /// Prescribed motion of a rigid wall (a platen, a piston, a conveyor belt, a driven roller, a
 /// turntable; ours, not in the theses): the translation v_w(t) = r(t) v with the optional
 /// [`Amplitude`] r (a start-up ramp, or a table such as press, hold and withdraw), so the

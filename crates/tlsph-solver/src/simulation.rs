@@ -2355,18 +2355,10 @@ fn check_spin<const D: usize>(
     if !coefficients.is_frictional() {
         return Err("a spin is felt only through friction; give the wall a friction coefficient, or no spin".into());
     }
-    let axis = match (D, shape) {
-        (3, WallShape::Plane | WallShape::Disc { .. }) => Some(tlsph_math::vector_to_3d(&normal)),
-        (3, WallShape::Cylinder { axis, .. }) => Some(tlsph_math::vector_to_3d(axis)),
-        (3, WallShape::Ball { .. }) => None,
-        (2, WallShape::Ball { .. }) => Some(tlsph_math::Vector3::z()),
-        (2, _) => {
-            return Err("in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape".into())
-        }
-        _ => return Err(format!("a {D}D wall cannot spin")),
+    let Some(axis) = shape.spin_axis(normal)? else {
+        return Ok(());
     };
-    let Some(axis) = axis else { return Ok(()) };
-    if omega.cross(&axis).norm() > 1e-12 * omega.norm() * axis.norm() {
+    if omega.cross(&axis).norm() > 1e-12 * omega.norm() {
         return Err(format!(
             "the spin {omega:?} must be about the wall's own axis {axis:?} (a plane's or a disc's normal, a cylinder's axis; about z in 2D): about any other axis the wall's shape would move"
         ));
