@@ -487,19 +487,18 @@ fn swap_into_place(partial: &Path, dir: &Path) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Writes a force history (`time`, then `<name>_force_x/y/z` for each named force) to `path`;
-/// nothing when the run has no such forces.
 /// Position of a moving wall at a time, padded to 3D.
 type WallTrack<'a> = (String, Box<dyn Fn(f64) -> tlsph_math::Vector3 + 'a>);
 
 /// Writes the forces `forces` picks from each sample, `<name>_force_x/y/z`, then the
-/// displacement of each of `tracks` at the sample's time, `<name>_displacement_x/y/z`; nothing
-/// without forces.
+/// displacement of each of `tracks` at the sample's time, `<name>_displacement_x/y/z`, then
+/// the torques `torques` picks, `<name>_torque`; nothing without forces.
 fn write_forces(
     path: &Path,
     diagnostics: &[Diagnostics],
     forces: impl Fn(&Diagnostics) -> &Vec<(String, tlsph_math::Vector3)>,
     tracks: &[WallTrack<'_>],
+    torques: impl Fn(&Diagnostics) -> &[(String, f64)],
 ) -> Result<(), RunError> {
     let Some(first) = diagnostics.first().filter(|d| !forces(d).is_empty()) else {
         return Ok(());
@@ -511,6 +510,7 @@ fn write_forces(
     for (n, _) in tracks {
         header.extend(["x", "y", "z"].map(|c| format!("{n}_displacement_{c}")));
     }
+    header.extend(torques(first).iter().map(|(n, _)| format!("{n}_torque")));
     let rows = diagnostics.iter().map(|d| {
         let mut row = vec![d.time];
         for (_, f) in forces(d) {
@@ -520,6 +520,7 @@ fn write_forces(
             let u = track(d.time);
             row.extend([u.x, u.y, u.z]);
         }
+        row.extend(torques(d).iter().map(|(_, t)| *t));
         row
     });
     write_csv(path, &header, rows)
@@ -598,12 +599,14 @@ fn write_run_folder(
         &record.diagnostics,
         |d| &d.effect_forces,
         &tracks,
+        |d| &d.effect_torques,
     )?;
     write_forces(
         &partial.join("boundaries.csv"),
         &record.diagnostics,
         |d| &d.boundary_forces,
         &[],
+        |_| &[],
     )?;
     let momentum_rows = record.diagnostics.iter().map(|d| {
         let (p, l) = (d.linear_momentum, d.angular_momentum);

@@ -24,6 +24,12 @@ pub struct Diagnostics {
     /// Resultant force of each effect that reports one (walls: the reaction on the particles)
     /// \[N\], padded to 3D.
     pub effect_forces: Vec<(String, Vector3)>,
+    /// Torque of each effect that reports one \[N m; 2D: N m per metre of thickness\]: a
+    /// spinning wall's friction (`wall_<name>_friction`), the moment of its force on the
+    /// particles about its spin axis ê = ω/|ω|, Σ m ê·((y − c) × a) over the touching surface
+    /// points y (its normal force has no moment about that axis): positive while the wall
+    /// drives the particles round with it; |ω| times it is the power the spin puts in.
+    pub effect_torques: Vec<(String, f64)>,
     /// Force of each prescribed-velocity set (`boundary_<name>`) on its particles in the
     /// last step \[N\], padded to 3D: the reaction a grip or clamp exerts, every force on the
     /// held components included (numerics.md §13.2, see `prescribed.rs`).
@@ -45,5 +51,14 @@ impl Diagnostics {
             .iter()
             .find(|(n, _)| n == name)
             .map_or(Vector3::zeros(), |(_, f)| *f)
+    }
+
+    /// The torque of the effect called `name` (a spinning wall's `wall_<name>_friction`)
+    /// \[N m\], zero if no such effect reports one.
+    pub fn effect_torque(&self, name: &str) -> f64 {
+        self.effect_torques
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(0.0, |(_, t)| *t)
     }
 }

@@ -1195,6 +1195,7 @@ impl<const D: usize> Simulation<D> {
             // driver as done against it (a rigid indenter pressed into a block books the
             // work of pressing it).
             booked.held_work = self.drivers.absorb(share, &self.particles, kick);
+            booked.effect.record_applied(&ctx, share);
             let p = &mut self.particles;
             let masses = &p.masses;
             p.accelerations
@@ -1586,6 +1587,9 @@ impl<const D: usize> Simulation<D> {
             let name = booked.effect.name().to_string();
             if let Some(f) = booked.effect.resultant() {
                 d.effect_forces.push((name.clone(), vector_to_3d(&f)));
+            }
+            if let Some(torque) = booked.effect.torque() {
+                d.effect_torques.push((name.clone(), torque));
             }
             d.effect_energies
                 .push((name, booked.energy - booked.pending));

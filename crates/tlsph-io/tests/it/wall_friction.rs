@@ -483,3 +483,46 @@ fn a_floor_run_with_an_amplitude_table_tracks_the_integral_of_its_table() {
     );
     assert!(worst < 1e-3 * e0, "total moved {worst:e}");
 }
+
+#[test]
+fn a_spinning_walls_torque_is_written_after_the_forces() {
+    // The slider also rests on a roll of radius 1 just below the floor's surface, spinning
+    // counter-clockwise (its top moves along −x, against the block). The roll's friction
+    // torque about its spin gets a column of its own at the end of walls.csv; the floor, which
+    // does not spin, has none. The roll touches the block at the surface points on top of it,
+    // so over the run Σ T = −R Σ F_x of its friction (lever (0, R)), within 1/cos of the
+    // contact's angle: measured 1.0000 (the block's bottom row touches the roll only near its
+    // top, within 0.05 rad); bound 1 %.
+    let text = SLIDER.replace(
+        "[body_force]",
+        "[[wall]]\nname = \"roll\"\nshape = \"ball\"\npoint = [0.275, -1.0]\nradius = 1.0\n\
+         friction = 0.5\nspin = 0.05\n\n[body_force]",
+    );
+    let scene = parse_scene(&text, "roll.toml").unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    let walls = fs::read_to_string(dir.join("walls.csv")).unwrap();
+    let header: Vec<&str> = walls.lines().next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 1 + 4 * 3 + 1, "{header:?}");
+    assert_eq!(header[10], "wall_roll_friction_force_x");
+    assert_eq!(header[13], "wall_roll_friction_torque");
+    assert!(!header
+        .iter()
+        .any(|h| h.starts_with("wall_floor") && h.ends_with("torque")));
+    let (mut torque, mut lever_force) = (0.0, 0.0);
+    for line in walls.lines().skip(1) {
+        let r: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        torque += r[13];
+        lever_force -= 1.0 * r[10];
+    }
+    println!("Σ T = {torque:.4e}, −R Σ F_x = {lever_force:.4e}");
+    assert!(
+        torque > 0.0,
+        "the roll never dragged the block: Σ T = {torque:e}"
+    );
+    assert!(
+        (torque / lever_force - 1.0).abs() < 0.01,
+        "Σ T = {torque:e} against −R Σ F_x = {lever_force:e}"
+    );
+}

@@ -76,6 +76,17 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
     /// Records the resultant of the accelerations just computed.
     fn set_resultant(&mut self, _force: Vector<D>) {}
 
+    /// Moment of the last step's force about the effect's own axis (a spinning wall: the
+    /// torque its friction exerts on the particles) \[N m\], if the effect reports one.
+    fn torque(&self) -> Option<f64> {
+        None
+    }
+
+    /// Sees the accelerations `applied` that this effect's kick gave the particles at t^n
+    /// (its own, less the prescribed components the drivers took over), for an effect that
+    /// reports more than their resultant (a spinning wall's torque).
+    fn record_applied(&mut self, _ctx: &EffectContext<'_, D>, _applied: &[Vector<D>]) {}
+
     /// Energy stored by a conservative effect at t^n (a penalty spring) \[J\]. When `Some`, it
     /// is booked directly instead of integrating the work, which for stiff, impulsive forces
     /// would carry the time-integration error of a few large steps.

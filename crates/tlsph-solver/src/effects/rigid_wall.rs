@@ -1,10 +1,11 @@
 //! Rigid wall (e.g. an anvil, or a flat punch of finite size): a penalty force pushes back
 //! every particle whose half-spacing sphere penetrates the wall (numerics.md §13 `[C]`).
 //! Depends on current positions only. The wall's shape is a type parameter
-//! ([`WallGeometry`]: an unbounded `RigidPlane` or a finite `FlatDisc`), so an unbounded
-//! wall's loop carries nothing of the finite one.
+//! ([`WallGeometry`]: an unbounded `RigidPlane`, a finite `FlatDisc`, a `RigidBall` or an
+//! unbounded `RigidCylinder`), so each shape's loop carries nothing of the others.
 //! With a friction coefficient the wall also carries a Coulomb friction effect of its own
-//! ([`WallFriction`]), booked and reported separately.
+//! ([`WallFriction`]), booked and reported separately; a spinning wall's friction also reports
+//! its torque about the spin axis.
 //!
 //! A moving wall ([`WallMotion`]) is the same plane translated by d(t): the penetration of a
 //! particle at x is that of x − d(t) against the plane at rest, and friction acts on the
@@ -20,7 +21,7 @@ use std::sync::Arc;
 use tlsph_contact::{
     spin_velocity, surface_point, wall_friction_acceleration, FrictionCoefficients, WallGeometry,
 };
-use tlsph_math::Vector;
+use tlsph_math::{vector_to_3d, Vector, Vector3};
 
 /// Particles per rayon task of the wall loops.
 const MIN_PER_TASK: usize = 1024;
@@ -92,6 +93,13 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
             point,
             coefficients,
             resultant: Vector::zeros(),
+            spin_axis: self
+                .motion
+                .as_ref()
+                .and_then(|m| m.spin)
+                .map(|omega| omega.normalize()),
+            torque: 0.0,
+            chunk_torques: Vec::new(),
         }
     }
 }
@@ -180,7 +188,8 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for RigidWa
 /// the wall's start-up is over). On a spinning wall the wall's velocity at a particle is that
 /// of the surface point it touches, v_w + ω × (y − c) (`tlsph_contact::spin_velocity`, y the
 /// particle's `surface_point`, c the wall's point); the work the spin puts in through
-/// friction is booked in the same column.
+/// friction is booked in the same column, and its torque about the spin axis is reported
+/// ([`Effect::torque`]).
 #[derive(Debug, Clone)]
 pub struct WallFriction<const D: usize, G> {
     name: String,
@@ -191,6 +200,13 @@ pub struct WallFriction<const D: usize, G> {
     /// Kinetic and static friction coefficients (not both 0).
     coefficients: FrictionCoefficients,
     resultant: Vector<D>,
+    /// A spinning wall's unit axis ê in the sense of its spin, ω/|ω|; `None` for a wall
+    /// without spin (no torque reported).
+    spin_axis: Option<Vector3>,
+    /// Spinning wall: the torque of the last step about ê \[N m\].
+    torque: f64,
+    /// Spinning wall: per-chunk partial sums of the torque (reused every step).
+    chunk_torques: Vec<f64>,
 }
 
 impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFriction<D, G> {
@@ -226,6 +242,41 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFri
 
     fn set_resultant(&mut self, force: Vector<D>) {
         self.resultant = force;
+    }
+
+    fn torque(&self) -> Option<f64> {
+        self.spin_axis.map(|_| self.torque)
+    }
+
+    /// A spinning wall's torque on the particles about its axis in the sense of its spin,
+    /// T = Σ m ê·((y − c) × a) with ê = ω/|ω|, each friction force acting at the surface
+    /// point y where its particle touches (the lever the wall turns; on a ball or cylinder
+    /// |y − c| = R). T > 0 while the wall drives the particles round with it; |ω| T is the
+    /// power the spin puts in. Summed in fixed chunks (thread-count independent).
+    fn record_applied(&mut self, ctx: &EffectContext<'_, D>, applied: &[Vector<D>]) {
+        let Some(axis) = self.spin_axis else {
+            return;
+        };
+        let p = ctx.particles;
+        let wall = &*self.geometry;
+        let shift = wall_shift(&self.motion, ctx.time);
+        let centre = self.point;
+        applied
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, chunk)| {
+                let mut torque = 0.0;
+                for (k, a) in chunk.iter().enumerate() {
+                    let i = c * CHUNK + k;
+                    let x = p.positions0[i] + p.displacements[i] - shift;
+                    let lever = surface_point(wall, i, x, wall.contact(i, x)) - centre;
+                    let moment = vector_to_3d(&lever).cross(&vector_to_3d(a));
+                    torque += p.masses[i] * axis.dot(&moment);
+                }
+                torque
+            })
+            .collect_into_vec(&mut self.chunk_torques);
+        self.torque = self.chunk_torques.iter().sum();
     }
 }
 
