@@ -28,11 +28,23 @@ fn spinning(omega: Vector3, ramp: f64) -> Option<WallMotion<2>> {
 /// spheres, spinning (counter-rotating) so that both surfaces move at `surface_speed` along +x
 /// where they touch it; static friction μ = `mu`.
 fn rolling_feed(surface_speed: f64, mu: f64, end_time: f64) -> Model<2> {
-    let dx = 0.05;
+    rolled_strip([20, 4], 0.05, surface_speed, mu, end_time)
+}
+
+/// The strip of [`rolling_feed`] as `particles` (columns × rows) of spacing `dx`, rolls
+/// pinching it at x = 0.5.
+fn rolled_strip(
+    particles: [usize; 2],
+    dx: f64,
+    surface_speed: f64,
+    mu: f64,
+    end_time: f64,
+) -> Model<2> {
     let radius = 0.5;
     let press = 0.05 * dx;
+    let thickness = particles[1] as f64 * dx;
     let mut m = model(
-        lattice([20, 4], dx),
+        lattice(particles, dx),
         dx,
         |_| Vector::<2>::zeros(),
         Setup {
@@ -44,7 +56,7 @@ fn rolling_feed(surface_speed: f64, mu: f64, end_time: f64) -> Model<2> {
     // The top roll's bottom moves along +x when it turns counter-clockwise (ω ẑ × (−R ŷ) =
     // ω R x̂), the bottom roll's top when it turns clockwise.
     for (name, centre_y, spin) in [
-        ("top", 0.2 - press + radius, omega),
+        ("top", thickness - press + radius, omega),
         ("bottom", press - radius, -omega),
     ] {
         m.effects.walls.push(WallDescription {
@@ -395,6 +407,43 @@ fn a_rolls_torque_is_its_radius_times_the_friction_it_feeds_with() {
         booked > 0.0 && booked < 1.0 + 1e-3,
         "friction booked {booked:.5} of the spin's work ∫ωT dt"
     );
+}
+
+#[test]
+fn a_spinning_walls_torque_is_bit_identical_for_one_and_two_threads() {
+    // The torque is summed in fixed chunks of particles, so it does not depend on how rayon
+    // splits the work. A strip of 128 × 40 particles (more than one chunk of 4096) pinched by
+    // the spinning rolls for 0.1 (59 steps, the spin 10 % up): the torques and the
+    // displacements of one and of two threads agree bit for bit.
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut sim = Simulation::new(rolled_strip([128, 40], 0.005, 0.01, 1.0, 0.1)).unwrap();
+            let mut torques = Vec::new();
+            sim.run(|s, _| {
+                let d = s.diagnostics();
+                torques.push(d.effect_torque("wall_top_friction").to_bits());
+                torques.push(d.effect_torque("wall_bottom_friction").to_bits());
+            })
+            .unwrap();
+            let u: Vec<[u64; 2]> = sim
+                .displacements()
+                .iter()
+                .map(|u| [u.x.to_bits(), u.y.to_bits()])
+                .collect();
+            (torques, u)
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert!(
+        one.0.iter().any(|t| f64::from_bits(*t) != 0.0),
+        "the rolls never turned the strip"
+    );
+    assert_eq!(one.0, two.0, "torques differ between thread counts");
+    assert_eq!(one.1, two.1, "displacements differ between thread counts");
 }
 
 #[test]
