@@ -14,7 +14,8 @@
 //! * [`RigidPlane`]: a fixed rigid plane (an anvil) pushing back particles by a penalty
 //!   spring, [`FlatDisc`]: a flat wall of finite size (a disc, a segment in 2D) with a rounded
 //!   rim, [`RigidBall`]: a rigid sphere (an indenter), [`RigidCylinder`]: a rigid cylinder of
-//!   unbounded length (a roller), all behind [`WallGeometry`]; and their Coulomb friction
+//!   unbounded length (a roller), [`FiniteCylinder`]: a solid cylinder with flat ends (a
+//!   cylindrical punch, a pin), all behind [`WallGeometry`]; and their Coulomb friction
 //!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
 //!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take
 //!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the
@@ -53,8 +54,9 @@ pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
 pub use wall::{
-    spin_velocity, surface_point, wall_friction_acceleration, FlatDisc, FrictionCoefficients,
-    RigidBall, RigidCylinder, RigidPlane, WallGeometry, WALL_STIFFNESS_FACTOR,
+    spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
+    FrictionCoefficients, RigidBall, RigidCylinder, RigidPlane, WallGeometry,
+    WALL_STIFFNESS_FACTOR,
 };
 
 /// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list

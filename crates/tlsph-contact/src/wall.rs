@@ -353,6 +353,103 @@ impl<const D: usize> WallGeometry<D> for RigidCylinder<D> {
     }
 }
 
+/// A rigid solid cylinder of finite length with flat ends (ours, not in the theses): the
+/// particles outside the cylinder of radius R about the segment of length L through `point`
+/// (its centre) along `axis`, e.g. a cylindrical punch pressed in deeper than its face, a pin,
+/// a rod lying across a body. A particle touches it when its contact sphere reaches the solid,
+/// δ = Δx/2 − s with s the signed distance from x to the solid's surface, and is pushed along
+/// the outward normal there: radially beside the mantle, along ±axis in front of an end face,
+/// away from the nearest rim point past a rim edge (so a particle sliding round the edge is
+/// released smoothly, as past a disc's rim). A particle pushed inside is pushed out through
+/// the nearest face. The push is the gradient of the spring's ½ k δ².
+#[derive(Debug, Clone)]
+pub struct FiniteCylinder<const D: usize> {
+    point: Vector<D>,
+    /// Unit axis direction.
+    axis: Vector<D>,
+    /// R \[m\].
+    radius: f64,
+    /// L/2 \[m\].
+    half_length: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> FiniteCylinder<D> {
+    /// The cylinder of radius `radius` and length `length` centred at `point` along `axis`
+    /// (normalised here), for particles with smoothing lengths `h`, sound speeds `c0` and
+    /// spacings `dx` (one entry per particle).
+    pub fn new(
+        point: Vector<D>,
+        axis: Vector<D>,
+        radius: f64,
+        length: f64,
+        h: &[f64],
+        c0: &[f64],
+        dx: &[f64],
+    ) -> Self {
+        Self {
+            point,
+            axis: axis.normalize(),
+            radius,
+            half_length: 0.5 * length,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+
+    /// Signed distance s from `x` to the cylinder's surface (negative inside) and the unit
+    /// outward direction from the nearest surface point towards `x` (the nearest face's
+    /// outward normal inside).
+    #[inline]
+    pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
+        let offset = x - self.point;
+        let along = offset.dot(&self.axis);
+        let radial = offset - self.axis * along;
+        let r = radial.norm();
+        let end = if along < 0.0 { -self.axis } else { self.axis };
+        let radial_unit = if r > 0.0 {
+            radial / r
+        } else {
+            // On the axis: any direction across it (the coordinate axis least aligned).
+            let least = self.axis.iamin();
+            let mut e = Vector::<D>::zeros();
+            e[least] = 1.0;
+            (e - self.axis * self.axis[least]).normalize()
+        };
+        // Beyond the end face (> 0) and beyond the mantle (> 0).
+        let past_end = along.abs() - self.half_length;
+        let past_mantle = r - self.radius;
+        match (past_end > 0.0, past_mantle > 0.0) {
+            (true, true) => {
+                let s = past_end.hypot(past_mantle);
+                (s, (end * past_end + radial_unit * past_mantle) / s)
+            }
+            (true, false) => (past_end, end),
+            (false, true) => (past_mantle, radial_unit),
+            // Inside: out through the nearer face.
+            (false, false) if past_end > past_mantle => (past_end, end),
+            (false, false) => (past_mantle, radial_unit),
+        }
+    }
+}
+
+impl<const D: usize> WallGeometry<D> for FiniteCylinder<D> {
+    #[inline]
+    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+        let (s, direction) = self.distance(x);
+        ((self.springs.radius[i] - s).max(0.0), direction)
+    }
+
+    #[inline]
+    fn stiffness_per_mass(&self, i: usize) -> f64 {
+        self.springs.stiffness_per_mass[i]
+    }
+
+    #[inline]
+    fn contact_radius(&self, i: usize) -> f64 {
+        self.springs.radius[i]
+    }
+}
+
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
 /// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).

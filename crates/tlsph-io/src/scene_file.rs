@@ -147,6 +147,8 @@ pub(crate) struct WallTable {
     pub radius: Option<Spanned<f64>>,
     /// Direction of a cylinder's axis (through `point`), or of a spinning ball's spin axis.
     pub axis: Option<Spanned<Vec<f64>>>,
+    /// A cylinder's length, centred at `point` (none: unbounded).
+    pub length: Option<Spanned<f64>>,
     /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
     /// normal, a cylinder's or a ball's `axis`, z for a ball in 2D \[rad/s\].
     pub spin: Option<Spanned<f64>>,

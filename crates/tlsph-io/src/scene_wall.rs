@@ -72,7 +72,12 @@ pub(crate) fn build_wall<const D: usize>(
             // image; the finite shapes are checked below).
             let lies_along = |a: usize| match shape {
                 WallShape::Plane => normal[a] == 0.0,
-                WallShape::Cylinder { axis, .. } => axis[a].abs() == axis.norm(),
+                WallShape::Cylinder {
+                    axis, length: None, ..
+                } => axis[a].abs() == axis.norm(),
+                WallShape::Cylinder {
+                    length: Some(_), ..
+                } => false,
                 WallShape::Disc { .. } | WallShape::Ball { .. } => false,
             };
             let sliding_across_a_mirror = symmetry_planes.iter().find(|p| {
@@ -244,12 +249,27 @@ fn wall_shape<const D: usize>(
         }
         (None, _) => Vector::<D>::zeros(),
     };
+    let length = match (&w.length, kind) {
+        (Some(l), Kind::Cylinder) => Some(ctx.positive(l, &key("length"))?),
+        (Some(l), _) => {
+            return Err(ctx.error(
+                &l.span(),
+                &key("length"),
+                "only a cylinder wall has a length".into(),
+            ))
+        }
+        (None, _) => None,
+    };
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
         // A ball's axis (3D, spinning) is only the spin's: the shape has none.
         Kind::Ball => WallShape::Ball { radius },
-        Kind::Cylinder => WallShape::Cylinder { radius, axis },
+        Kind::Cylinder => WallShape::Cylinder {
+            radius,
+            axis,
+            length,
+        },
     };
     Ok((shape, normal))
 }
@@ -338,9 +358,22 @@ fn check_start<const D: usize>(
     };
     let disc_radius = match *shape {
         WallShape::Ball { radius } => return inside("ball", radius, &|x| (x - point).norm()),
-        WallShape::Cylinder { radius, axis } => {
+        WallShape::Cylinder {
+            radius,
+            axis,
+            length,
+        } => {
+            // A finite cylinder: only a particle within its length can be inside.
             let axis = axis / axis.norm();
-            return inside("cylinder", radius, &|x| across(&(x - point), &axis).norm());
+            let half_length = length.map_or(f64::INFINITY, |l| 0.5 * l);
+            return inside("cylinder", radius, &|x| {
+                let offset = x - point;
+                if offset.dot(&axis).abs() < half_length {
+                    across(&offset, &axis).norm()
+                } else {
+                    f64::INFINITY
+                }
+            });
         }
         WallShape::Plane => None,
         WallShape::Disc { radius } => Some(radius),
@@ -408,24 +441,40 @@ fn check_symmetry<const D: usize>(
             WallShape::Plane => continue,
             WallShape::Disc { radius } => ("disc", unit[a] == 0.0 && off_centre(radius)),
             WallShape::Ball { radius } => ("ball", off_centre(radius)),
-            WallShape::Cylinder { radius, axis } => {
+            WallShape::Cylinder {
+                radius,
+                axis,
+                length,
+            } => {
                 let along = axis[a].abs() / axis.norm();
                 if along == 1.0 {
-                    continue;
+                    // Along the normal: unbounded, it is its own mirror image; of finite
+                    // length, it reaches L/2 to either side of its point.
+                    match length {
+                        None => continue,
+                        Some(length) => ("cylinder", off_centre(0.5 * length)),
+                    }
+                } else {
+                    // How far an oblique cylinder reaches along the normal: unbounded, without
+                    // end; of finite length, ½L cos θ + R sin θ.
+                    let reach = length.map_or(f64::INFINITY, |l| {
+                        0.5 * l * along + radius * (1.0 - along * along).sqrt()
+                    });
+                    if along > 0.0 && (point[a] - position).abs() < reach {
+                        let axis_span = w.axis.as_ref().map_or(radius_span, |a| a.span());
+                        return Err(ctx.error(
+                            &axis_span,
+                            &key("axis"),
+                            format!(
+                                "the cylinder's axis is oblique to the symmetry plane {} = {}, so it crosses the plane and its mirror image is another cylinder; lay the axis along the plane or along its normal{}",
+                                plane.axis.get_ref(),
+                                position,
+                                if length.is_some() { ", or keep it clear of the plane" } else { "" }
+                            ),
+                        ));
+                    }
+                    ("cylinder", along == 0.0 && off_centre(radius))
                 }
-                if along > 0.0 {
-                    let axis_span = w.axis.as_ref().map_or(radius_span, |a| a.span());
-                    return Err(ctx.error(
-                        &axis_span,
-                        &key("axis"),
-                        format!(
-                            "the cylinder's axis is oblique to the symmetry plane {} = {}, so it crosses the plane and its mirror image is another cylinder; lay the axis along the plane or along its normal",
-                            plane.axis.get_ref(),
-                            position
-                        ),
-                    ));
-                }
-                ("cylinder", off_centre(radius))
             }
         };
         if problem {

@@ -685,14 +685,18 @@ pub enum WallShape<const D: usize> {
         /// R \[m\].
         radius: f64,
     },
-    /// (3D) The cylinder of this radius about the line through `point` along `axis`, unbounded
-    /// in length: a roller, a cylindrical indenter (`tlsph_contact::RigidCylinder`); `normal`
+    /// (3D) The cylinder of this radius about the line through `point` along `axis`: unbounded
+    /// in length, a roller, a cylindrical indenter longer than the body
+    /// (`tlsph_contact::RigidCylinder`); or of a finite length centred at `point`, a solid
+    /// with flat ends, a cylindrical punch, a pin (`tlsph_contact::FiniteCylinder`). `normal`
     /// is not used.
     Cylinder {
         /// R \[m\].
         radius: f64,
         /// Direction of the axis (need not be unit).
         axis: Vector<D>,
+        /// L \[m\]: `None` for an unbounded cylinder.
+        length: Option<f64>,
     },
 }
 

@@ -25,8 +25,8 @@ use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_contact::{
-    FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidCylinder, RigidPlane,
-    WallGeometry,
+    FiniteCylinder, FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall,
+    RigidCylinder, RigidPlane, WallGeometry,
 };
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
@@ -2056,20 +2056,36 @@ fn build_effects<const D: usize>(
                     (coefficients, point),
                 );
             }
-            WallShape::Cylinder { radius, axis } => {
+            WallShape::Cylinder {
+                radius,
+                axis,
+                length,
+            } => {
                 let radius = checked_radius(radius)?;
                 if D != 3 {
                     return Err(wall_error(format!(
                         "a cylinder needs a 3D scene (in 2D a ball is the cylinder in plane strain), got {D}D"
                     )));
                 }
-                let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, cylinder, motion),
-                    (coefficients, point),
-                );
+                let friction = (coefficients, point);
+                match length {
+                    None => {
+                        let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
+                        let wall = RigidWall::new(name, cylinder, motion);
+                        push_wall(&mut effects, travel, wall, friction);
+                    }
+                    Some(length) => {
+                        if !(length.is_finite() && length > 0.0) {
+                            return Err(wall_error(format!(
+                                "a cylinder's length must be finite and > 0, got {length}"
+                            )));
+                        }
+                        let cylinder =
+                            FiniteCylinder::new(point, axis, radius, length, &h, &c0, &dx);
+                        let wall = RigidWall::new(name, cylinder, motion);
+                        push_wall(&mut effects, travel, wall, friction);
+                    }
+                }
             }
         }
     }

@@ -1,11 +1,12 @@
 //! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
-//! cylinder), the surface point and spin velocity their friction reads, and their Coulomb
+//! cylinder, the finite cylinder), the surface point and spin velocity their friction reads, and their Coulomb
 //! friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
-    spin_velocity, surface_point, wall_friction_acceleration, FlatDisc, FrictionCoefficients,
-    RigidBall, RigidCylinder, RigidPlane, Vector, WallGeometry, WALL_STIFFNESS_FACTOR,
+    spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
+    FrictionCoefficients, RigidBall, RigidCylinder, RigidPlane, Vector, WallGeometry,
+    WALL_STIFFNESS_FACTOR,
 };
 use tlsph_math::Vector3;
 
@@ -317,6 +318,70 @@ fn a_cylinder_pushes_away_from_its_axis_by_the_penetration_of_its_surface() {
             (3.2, 5.0, 5.3),
         ],
     );
+}
+
+#[test]
+fn a_finite_cylinder_pushes_out_of_its_mantle_its_end_faces_and_round_its_rims() {
+    // Cylinder of radius 2 and length 4 centred at (1, 0, 0) along (0, 1, 1)/√2, particle
+    // contact radius ½: δ = ½ − s with s the distance to the solid, along its outward normal.
+    let cylinder = FiniteCylinder::<3>::new(
+        Vector::<3>::new(1.0, 0.0, 0.0),
+        Vector::<3>::new(0.0, 3.0, 3.0),
+        2.0,
+        4.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let axis = Vector::<3>::new(0.0, 1.0, 1.0).normalize();
+    let across = Vector::<3>::new(0.0, 1.0, -1.0).normalize();
+    let at = |along: f64, r: f64| Vector::<3>::new(1.0, 0.0, 0.0) + axis * along + across * r;
+    let check = |x: Vector<3>, delta: f64, n: Vector<3>| {
+        let (d, direction) = cylinder.contact(0, x);
+        assert_relative_eq!(d, delta, epsilon = 1e-13);
+        assert_relative_eq!(direction, n, epsilon = 1e-13);
+        // The surface point a spinning cylinder's friction reads is the nearest one.
+        let y = surface_point(&cylinder, 0, x, (d, direction));
+        assert_relative_eq!(cylinder.distance(y).0, 0.0, epsilon = 1e-13);
+    };
+    // Beside the mantle, anywhere along the length: the unbounded cylinder's law.
+    for along in [-1.9, 0.0, 1.5] {
+        check(at(along, 2.3), 0.2, across);
+        check(at(along, -2.1), 0.4, -across);
+    }
+    // In front of either end face, anywhere within the radius: the plane's law.
+    for r in [0.0, 1.0, -1.9] {
+        check(at(2.3, r), 0.2, axis);
+        check(at(-2.4, r), 0.1, -axis);
+    }
+    // Past a rim: away from the nearest rim point, at the distance to it.
+    let s = 0.2_f64.hypot(0.2);
+    check(at(2.2, 2.2), 0.5 - s, (axis + across).normalize());
+    check(
+        at(-2.1, -2.3),
+        0.5 - 0.1_f64.hypot(0.3),
+        (-axis * 0.1 - across * 0.3) / 0.1_f64.hypot(0.3),
+    );
+    assert_eq!(cylinder.contact(0, at(2.3, 2.5)).0, 0.0);
+    assert_eq!(cylinder.contact(0, at(0.0, 2.6)).0, 0.0);
+    assert_eq!(cylinder.contact(0, at(2.6, 0.0)).0, 0.0);
+    // Pushed inside: out through the nearer face, by the contact radius plus the depth.
+    check(at(1.5, 0.5), 1.0, axis);
+    check(at(0.2, -1.7), 0.8, -across);
+    // In each region, and off the plane of the cases above (across along x).
+    let points: Vec<(f64, f64, f64)> = [
+        at(1.0, 2.3),
+        at(2.3, 1.0),
+        at(2.2, 2.2),
+        at(-2.1, -2.3),
+        at(1.5, 0.5),
+        at(0.2, -1.7),
+        at(2.15, 0.0) + Vector::<3>::new(2.1, 0.0, 0.0),
+    ]
+    .iter()
+    .map(|x| (x.x, x.y, x.z))
+    .collect();
+    assert_push_is_energy_gradient(&cylinder, &points);
 }
 
 #[test]

@@ -395,7 +395,8 @@ fn a_cylinder_wall_is_read_and_its_keys_are_checked() {
         model.effects.walls[0].shape,
         WallShape::Cylinder {
             radius: 3.0e-3,
-            axis: tlsph_math::Vector::<3>::new(0.0, 1.0, 0.0)
+            axis: tlsph_math::Vector::<3>::new(0.0, 1.0, 0.0),
+            length: None,
         }
     );
     // Lowered by 2 mm its axis is closer than R to the top layer: refused at `point`.
@@ -496,6 +497,104 @@ fn a_cylinder_across_a_symmetry_plane_must_be_its_own_mirror_image() {
     assert_eq!(e.field, "wall[roller].axis", "{e}");
     assert_eq!(e.line, Some(line_of(&oblique, "axis = [1.0, 1.0, 0.0]")));
     assert!(e.message.contains("oblique"), "{e}");
+}
+
+#[test]
+fn a_finite_cylinder_is_read_placed_and_checked() {
+    // `length` makes the roller a solid cylinder of that length centred at its point.
+    let short = HALF_BEND.replace("radius = 3.0e-3\n", "radius = 3.0e-3\nlength = 6.0e-3\n");
+    let scene = parse_scene(&short, "short.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert_eq!(
+        model.effects.walls[0].shape,
+        WallShape::Cylinder {
+            radius: 3.0e-3,
+            axis: tlsph_math::Vector::<3>::new(0.0, 1.0, 0.0),
+            length: Some(6.0e-3),
+        }
+    );
+    // Not positive: refused at `length`, with its line.
+    let flat = short.replace("length = 6.0e-3", "length = 0.0");
+    let e = error_of(&flat);
+    assert_eq!(e.field, "wall[roller].length", "{e}");
+    assert!(e.message.contains("> 0"), "{e}");
+    assert_eq!(e.line, Some(line_of(&flat, "length = 0.0")));
+    // Only a cylinder has a length.
+    let ball = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[wall]]\nname = \"ball\"\nshape = \"ball\"\npoint = [5.0e-3, 14.0e-3]\nradius = 4.0e-3\nlength = 1.0e-3\n";
+    let e = error_of(&ball);
+    assert_eq!(e.field, "wall[ball].length", "{e}");
+    assert!(e.message.contains("only a cylinder"), "{e}");
+    // Sunk 2 mm into the beam's top layer it starts inside while it spans the beam's width
+    // (y from 0 to 4 mm); moved along its axis to span y = 6–12 mm it is clear of the beam.
+    let sunk = short.replace(
+        "point = [0.0, 2.0e-3, 7.0e-3]",
+        "point = [0.0, 2.0e-3, 5.0e-3]",
+    );
+    let e = error_of(&sunk);
+    assert_eq!(e.field, "wall[roller].point", "{e}");
+    assert!(e.message.contains("starts inside the cylinder"), "{e}");
+    parse_scene(
+        &short.replace(
+            "point = [0.0, 2.0e-3, 7.0e-3]",
+            "point = [0.0, 9.0e-3, 5.0e-3]",
+        ),
+        "beside.toml",
+    )
+    .unwrap();
+    // Along the symmetry plane's normal (axis x) it reaches L/2 = 3 mm to either side of its
+    // point: clear of the plane (point at x = 5 mm) or centred on it is accepted; crossing it
+    // off centre (x = 2 mm), or centred but sliding across it, is refused.
+    let along_x = |x: &str, velocity: &str| {
+        short
+            .replace(
+                "point = [0.0, 2.0e-3, 7.0e-3]",
+                &format!("point = [{x}, 2.0e-3, 7.0e-3]"),
+            )
+            .replace("axis = [0.0, 1.0, 0.0]", "axis = [2.0, 0.0, 0.0]")
+            .replace("velocity = [0.0, 0.0, -1.0]", velocity)
+    };
+    parse_scene(
+        &along_x("5.0e-3", "velocity = [1.0, 0.0, -1.0]"),
+        "clear.toml",
+    )
+    .unwrap();
+    parse_scene(
+        &along_x("0.0", "velocity = [0.0, 0.0, -1.0]"),
+        "centred.toml",
+    )
+    .unwrap();
+    for (x, velocity) in [
+        ("2.0e-3", "velocity = [0.0, 0.0, -1.0]"),
+        ("0.0", "velocity = [1.0, 0.0, -1.0]"),
+    ] {
+        let e = error_of(&along_x(x, velocity));
+        assert_eq!(e.field, "wall[roller].radius", "{x}, {velocity}: {e}");
+        assert!(
+            e.message
+                .contains("the cylinder crosses the symmetry plane x = 0"),
+            "{e}"
+        );
+    }
+    // Oblique (axis (1, 1, 0)): it reaches ½L cos 45° + R sin 45° = 4.2 mm along x, so at
+    // x = 5 mm it is clear of the plane, at x = 4 mm it crosses it.
+    let oblique = |x: &str| {
+        short
+            .replace(
+                "point = [0.0, 2.0e-3, 7.0e-3]",
+                &format!("point = [{x}, 2.0e-3, 7.0e-3]"),
+            )
+            .replace("axis = [0.0, 1.0, 0.0]", "axis = [1.0, 1.0, 0.0]")
+    };
+    parse_scene(&oblique("5.0e-3"), "oblique.toml").unwrap();
+    let e = error_of(&oblique("4.0e-3"));
+    assert_eq!(e.field, "wall[roller].axis", "{e}");
+    assert!(
+        e.message.contains("oblique") && e.message.contains("keep it clear"),
+        "{e}"
+    );
 }
 
 #[test]
