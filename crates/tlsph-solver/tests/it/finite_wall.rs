@@ -274,9 +274,9 @@ fn a_wall_faster_than_sound_advances_at_most_a_cfl_length_per_step() {
 }
 
 #[test]
-fn the_solver_refuses_a_cylinder_without_an_axis_or_outside_3d() {
+fn the_solver_refuses_a_cylinder_with_a_bad_axis_or_length_or_outside_3d() {
     // A library user builds the model without the scene reader's checks.
-    let cylinder = |axis: Vector<3>| {
+    let cylinder = |axis: Vector<3>, length: Option<f64>| {
         let mut m = block_held_at_its_base([4, 4, 4], 0.05, 1.0);
         m.effects.walls.push(WallDescription {
             name: "roller".into(),
@@ -287,19 +287,35 @@ fn the_solver_refuses_a_cylinder_without_an_axis_or_outside_3d() {
             shape: WallShape::Cylinder {
                 radius: 0.5,
                 axis,
-                length: None,
+                length,
             },
         });
         Simulation::new(m)
     };
-    assert!(cylinder(Vector::<3>::y()).is_ok(), "its normal is not used");
+    assert!(
+        cylinder(Vector::<3>::y(), None).is_ok(),
+        "its normal is not used"
+    );
+    assert!(cylinder(Vector::<3>::y(), Some(0.2)).is_ok());
     for axis in [Vector::<3>::zeros(), Vector::<3>::new(f64::NAN, 1.0, 0.0)] {
-        match cylinder(axis) {
+        match cylinder(axis, None) {
             Err(SetupError::InvalidConfig { field, message }) => {
                 assert_eq!(field, "wall");
                 assert!(message.contains("non-zero axis"), "{message}");
             }
             other => panic!("axis {axis:?}: expected a wall error, got {other:?}"),
+        }
+    }
+    for length in [0.0, -1.0, f64::INFINITY, f64::NAN] {
+        match cylinder(Vector::<3>::y(), Some(length)) {
+            Err(SetupError::InvalidConfig { field, message }) => {
+                assert_eq!(field, "wall");
+                assert!(
+                    message.contains("length must be finite and > 0"),
+                    "{message}"
+                );
+            }
+            other => panic!("length {length}: expected a wall error, got {other:?}"),
         }
     }
     let mut flat = block_held_at_its_base([4, 4], 0.05, 1.0);
