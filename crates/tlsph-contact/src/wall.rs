@@ -279,6 +279,16 @@ impl<const D: usize> WallGeometry<D> for RigidBall<D> {
     }
 }
 
+/// A unit direction at right angles to the unit `axis`, for a particle exactly on a cylinder's
+/// axis (where the radial direction is undefined): the coordinate axis least aligned with it,
+/// made normal to it.
+fn across_axis<const D: usize>(axis: &Vector<D>) -> Vector<D> {
+    let least = axis.iamin();
+    let mut e = Vector::<D>::zeros();
+    e[least] = 1.0;
+    (e - axis * axis[least]).normalize()
+}
+
 /// A rigid cylinder of unbounded length (ours, not in the theses): the particles outside the
 /// circular cylinder of radius R about the line through `point` along `axis`, e.g. the
 /// rollers of a three-point bend or a cylindrical indenter longer than the body. A particle
@@ -334,10 +344,7 @@ impl<const D: usize> WallGeometry<D> for RigidCylinder<D> {
         let direction = if distance > 0.0 {
             radial / distance
         } else {
-            let least = self.axis.iamin();
-            let mut e = Vector::<D>::zeros();
-            e[least] = 1.0;
-            (e - self.axis * self.axis[least]).normalize()
+            across_axis(&self.axis)
         };
         (delta, direction)
     }
@@ -409,11 +416,7 @@ impl<const D: usize> FiniteCylinder<D> {
         let radial_unit = if r > 0.0 {
             radial / r
         } else {
-            // On the axis: any direction across it (the coordinate axis least aligned).
-            let least = self.axis.iamin();
-            let mut e = Vector::<D>::zeros();
-            e[least] = 1.0;
-            (e - self.axis * self.axis[least]).normalize()
+            across_axis(&self.axis)
         };
         // Beyond the end face (> 0) and beyond the mantle (> 0).
         let past_end = along.abs() - self.half_length;
