@@ -15,7 +15,9 @@
 //!   spring, [`FlatDisc`]: a flat wall of finite size (a disc, a segment in 2D) with a rounded
 //!   rim, [`RigidBall`]: a rigid sphere (an indenter), [`RigidCylinder`]: a rigid cylinder of
 //!   unbounded length (a roller), [`FiniteCylinder`]: a solid cylinder with flat ends (a
-//!   cylindrical punch, a pin), all behind [`WallGeometry`]; and their Coulomb friction
+//!   cylindrical punch, a pin), [`RigidBox`]: a rectangle or a rectangular block with sharp
+//!   edges (a rectangular punch, a die, a step), all behind [`WallGeometry`]; and their
+//!   Coulomb friction
 //!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
 //!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take
 //!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the
@@ -55,7 +57,7 @@ pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
 pub use wall::{
     spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
-    FrictionCoefficients, RigidBall, RigidCylinder, RigidPlane, WallGeometry,
+    FrictionCoefficients, RigidBall, RigidBox, RigidCylinder, RigidPlane, WallGeometry,
     WALL_STIFFNESS_FACTOR,
 };
 

@@ -4,7 +4,7 @@
 //! plane moving by d(t) at v_w is this plane seen from the wall: pass x − d(t) and v − v_w
 //! (the solver's moving walls do so).
 
-use tlsph_math::{vector_to_3d, Vector, Vector3};
+use tlsph_math::{vector_to_3d, Tensor, Vector, Vector3};
 
 /// Penalty stiffness in units of m (c0/h)²: the contact oscillator then has ω = 2 c0/h, so
 /// ω Δt = 2 C_cfl ≤ 1.6 for C_cfl ≤ 0.8 — inside the leap-frog limit ω Δt < 2 without
@@ -78,6 +78,32 @@ pub fn surface_point<const D: usize, G: WallGeometry<D> + ?Sized>(
 pub fn spin_velocity<const D: usize>(omega: &Vector3, offset: &Vector<D>) -> Vector<D> {
     let v = omega.cross(&vector_to_3d(offset));
     Vector::<D>::from_fn(|k, _| v[k])
+}
+
+/// The contact law of a wall given by its distance: a shape with a `distance(x)` method
+/// returning (s, n̂), the (signed) distance from `x` to its surface and the outward unit
+/// normal there, and a `springs` field, touches particle `i` with δ = Δx/2 − s, pushed along
+/// n̂ (numerics.md §13 `[C]`).
+macro_rules! wall_by_distance {
+    ($shape:ident) => {
+        impl<const D: usize> WallGeometry<D> for $shape<D> {
+            #[inline]
+            fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
+                let (s, direction) = self.distance(x);
+                ((self.springs.radius[i] - s).max(0.0), direction)
+            }
+
+            #[inline]
+            fn stiffness_per_mass(&self, i: usize) -> f64 {
+                self.springs.stiffness_per_mass[i]
+            }
+
+            #[inline]
+            fn contact_radius(&self, i: usize) -> f64 {
+                self.springs.radius[i]
+            }
+        }
+    };
 }
 
 /// An unbounded rigid plane with the per-particle penalty law (numerics.md §13 `[C]`).
@@ -208,23 +234,7 @@ impl<const D: usize> FlatDisc<D> {
     }
 }
 
-impl<const D: usize> WallGeometry<D> for FlatDisc<D> {
-    #[inline]
-    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
-        let (s, direction) = self.distance(x);
-        ((self.springs.radius[i] - s).max(0.0), direction)
-    }
-
-    #[inline]
-    fn stiffness_per_mass(&self, i: usize) -> f64 {
-        self.springs.stiffness_per_mass[i]
-    }
-
-    #[inline]
-    fn contact_radius(&self, i: usize) -> f64 {
-        self.springs.radius[i]
-    }
-}
+wall_by_distance!(FlatDisc);
 
 /// A rigid ball (ours, not in the theses): the sphere of radius R about `centre` (a disc in
 /// 2D: a cylinder in plane strain), e.g. a spherical indenter. A particle touches it when its
@@ -435,23 +445,110 @@ impl<const D: usize> FiniteCylinder<D> {
     }
 }
 
-impl<const D: usize> WallGeometry<D> for FiniteCylinder<D> {
-    #[inline]
-    fn contact(&self, i: usize, x: Vector<D>) -> (f64, Vector<D>) {
-        let (s, direction) = self.distance(x);
-        ((self.springs.radius[i] - s).max(0.0), direction)
+wall_by_distance!(FiniteCylinder);
+
+/// A rigid box (ours, not in the theses): the rectangle (2D) or rectangular block (3D) of
+/// edge lengths a_k centred at `centre`, its edges along the orthonormal frame e_k, e.g. a
+/// rectangular punch with sharp edges, a die, a step, a block in a body's path. With the
+/// particle's offset in the box's frame, q_k = e_k·(x − centre), and p_k = |q_k| − a_k/2 its
+/// reach past each pair of faces, the signed distance to the box's surface is
+/// s = |max(p, 0)| outside (the nearest point of a face, an edge or a corner) and
+/// s = max_k p_k < 0 inside (the nearest face). A particle touches the box when
+/// δ = Δx/2 − s > 0 and is pushed along the outward normal at its nearest surface point:
+/// along ±e_k in front of a face, away from the nearest edge or corner point past them (so a
+/// particle sliding round an edge is released smoothly); one pushed inside is pushed out
+/// through the nearest face. The push is the gradient of the spring's ½ k δ².
+#[derive(Debug, Clone)]
+pub struct RigidBox<const D: usize> {
+    centre: Vector<D>,
+    /// The edge directions e_k as columns (orthonormal).
+    frame: Tensor<D>,
+    /// a_k/2 \[m\].
+    half_size: Vector<D>,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> RigidBox<D> {
+    /// The box of edge lengths `size` (a_k along the frame's column k) centred at `centre`,
+    /// for particles with smoothing lengths `h`, sound speeds `c0` and spacings `dx` (one
+    /// entry per particle). `frame` must be orthonormal (see [`RigidBox::frame`]).
+    pub fn new(
+        centre: Vector<D>,
+        frame: Tensor<D>,
+        size: Vector<D>,
+        h: &[f64],
+        c0: &[f64],
+        dx: &[f64],
+    ) -> Self {
+        Self {
+            centre,
+            frame,
+            half_size: size * 0.5,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
     }
 
-    #[inline]
-    fn stiffness_per_mass(&self, i: usize) -> f64 {
-        self.springs.stiffness_per_mass[i]
+    /// The box's frame from its `normal` and, in 3D, its `axis` (neither need be unit): the
+    /// last edge e_{D−1} along the normal; in 2D e_0 = (n_y, −n_x), the normal turned a
+    /// quarter clockwise; in 3D e_0 along the axis and e_1 = e_2 × e_0, a right-handed frame.
+    /// So the normal z and the axis x give the coordinate axes, and a box's `size` lists its
+    /// edges along (e_0, e_1[, e_2]). An error says why there is no frame: a zero or
+    /// non-finite direction, an axis not at right angles to the normal (to 1e-9 in the cosine)
+    /// or a 1D scene.
+    pub fn frame(normal: Vector<D>, axis: Vector<D>) -> Result<Tensor<D>, String> {
+        let unit = |v: Vector<D>, name: &str| {
+            let length = v.norm();
+            if length > 0.0 && length.is_finite() {
+                Ok(v / length)
+            } else {
+                Err(format!("the box's {name} must be finite and non-zero"))
+            }
+        };
+        let normal = unit(normal, "normal")?;
+        match D {
+            2 => Ok(Tensor::<D>::from_fn(|r, c| match (r, c) {
+                (0, 0) => normal[1],
+                (1, 0) => -normal[0],
+                (r, _) => normal[r],
+            })),
+            3 => {
+                let axis = unit(axis, "axis")?;
+                let cosine = axis.dot(&normal);
+                if cosine.abs() > 1e-9 {
+                    return Err(format!(
+                        "the box's axis must be at right angles to its normal, their cosine is {cosine:.3e}"
+                    ));
+                }
+                // Remove the round-off along the normal so the frame is orthonormal.
+                let axis = (axis - normal * cosine).normalize();
+                let (e0, e2) = (vector_to_3d(&axis), vector_to_3d(&normal));
+                let e1 = e2.cross(&e0);
+                Ok(Tensor::<D>::from_fn(|r, c| [e0, e1, e2][c][r]))
+            }
+            _ => Err(format!("a box needs a 2D or 3D scene, got {D}D")),
+        }
     }
 
+    /// Signed distance s from `x` to the box's surface (negative inside) and the unit outward
+    /// direction from the nearest surface point towards `x` (the nearest face's outward
+    /// normal inside; the first such face on a tie).
     #[inline]
-    fn contact_radius(&self, i: usize) -> f64 {
-        self.springs.radius[i]
+    pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
+        let local = self.frame.tr_mul(&(x - self.centre));
+        let side = local.map(|q| if q < 0.0 { -1.0 } else { 1.0 });
+        let past = local.abs() - self.half_size;
+        let outside = past.map(|p| p.max(0.0));
+        let s = outside.norm();
+        if s > 0.0 {
+            (s, self.frame * outside.component_mul(&side) / s)
+        } else {
+            let nearest = past.imax();
+            (past[nearest], self.frame.column(nearest) * side[nearest])
+        }
     }
 }
+
+wall_by_distance!(RigidBox);
 
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a

@@ -123,14 +123,14 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, frictionless unless `friction` is
-/// given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
+/// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, or a box of `size`,
+/// frictionless unless `friction` is given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
     pub name: Spanned<String>,
     pub point: Spanned<Vec<f64>>,
-    /// Required except for a ball.
+    /// Required by a plane or a disc; optional for a box; none for a ball or a cylinder.
     pub normal: Option<Spanned<Vec<f64>>>,
     pub friction: Option<Spanned<f64>>,
     pub static_friction: Option<Spanned<f64>>,
@@ -140,7 +140,7 @@ pub(crate) struct WallTable {
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
     pub amplitude_shape: Option<Spanned<String>>,
-    /// "plane" (default), "disc" (the default with `radius`), "ball" or "cylinder".
+    /// "plane" (default), "disc" (the default with `radius`), "ball", "cylinder" or "box".
     pub shape: Option<Spanned<String>>,
     /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`, or the
     /// cylinder of this radius about its axis.
@@ -149,6 +149,9 @@ pub(crate) struct WallTable {
     pub axis: Option<Spanned<Vec<f64>>>,
     /// A cylinder's length, centred at `point` (none: unbounded).
     pub length: Option<Spanned<f64>>,
+    /// A box's edge lengths, along its frame (its edges along the coordinate axes unless
+    /// `normal`, and in 3D `axis`, turn it).
+    pub size: Option<Spanned<Vec<f64>>>,
     /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
     /// normal, a cylinder's or a ball's `axis`, z for a ball in 2D \[rad/s\].
     pub spin: Option<Spanned<f64>>,

@@ -1,4 +1,4 @@
-//! The `[[wall]]` tables: a rigid plane, disc, ball or cylinder with its friction and motion,
+//! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder or box with its friction and motion,
 //! checked against the bodies' starting positions and the symmetry planes (numerics.md §13
 //! `[C]`; the finite shapes are ours).
 
@@ -78,7 +78,7 @@ pub(crate) fn build_wall<const D: usize>(
                 WallShape::Cylinder {
                     length: Some(_), ..
                 } => false,
-                WallShape::Disc { .. } | WallShape::Ball { .. } => false,
+                WallShape::Disc { .. } | WallShape::Ball { .. } | WallShape::Box { .. } => false,
             };
             let sliding_across_a_mirror = symmetry_planes.iter().find(|p| {
                 axis_index(p.axis.get_ref()).is_some_and(|a| {
@@ -147,6 +147,7 @@ fn wall_shape<const D: usize>(
         Disc,
         Ball,
         Cylinder,
+        Box,
     }
     let default_kind = if w.radius.is_some() {
         Kind::Disc
@@ -163,6 +164,7 @@ fn wall_shape<const D: usize>(
             ("disc", Kind::Disc),
             ("ball", Kind::Ball),
             ("cylinder", Kind::Cylinder),
+            ("box", Kind::Box),
         ],
     )?;
     let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
@@ -173,8 +175,22 @@ fn wall_shape<const D: usize>(
             format!("a cylinder wall needs a 3D scene, got {D}D (in 2D, shape = \"ball\" is the cylinder in plane strain)"),
         ));
     }
+    if kind == Kind::Box && D < 2 {
+        return Err(ctx.error(
+            &shape_span,
+            &key("shape"),
+            "a 1D wall is a point; a box needs a 2D or 3D scene".into(),
+        ));
+    }
     let radius = match (&w.radius, kind) {
-        (None, Kind::Plane) => 0.0,
+        (None, Kind::Plane | Kind::Box) => 0.0,
+        (Some(r), Kind::Box) => {
+            return Err(ctx.error(
+                &r.span(),
+                &key("radius"),
+                "a box wall has a `size` (its edge lengths), not a radius".into(),
+            ))
+        }
         (Some(r), Kind::Plane) => {
             return Err(ctx.error(
                 &r.span(),
@@ -206,10 +222,16 @@ fn wall_shape<const D: usize>(
         }
         Ok(direction)
     };
-    // A ball or cylinder has no normal; the others need one. The last axis stands in.
+    // A ball or cylinder has no normal; a box's is optional; a plane and a disc need one.
+    // The last axis stands in.
     let radial = matches!(kind, Kind::Ball | Kind::Cylinder);
     let normal =
         match (&w.normal, radial) {
+            (None, false) if kind == Kind::Box => {
+                let mut last = Vector::<D>::zeros();
+                last[D - 1] = 1.0;
+                last
+            }
             (Some(n), true) => return Err(ctx.error(
                 &n.span(),
                 &key("normal"),
@@ -240,11 +262,31 @@ fn wall_shape<const D: usize>(
             ))
         }
         (Some(a), Kind::Ball) if w.spin.is_some() && D == 3 => non_zero(a, "axis")?,
+        // A 3D box turns with its normal and its axis together; its edges are the coordinate
+        // axes with neither.
+        (Some(a), Kind::Box) if D == 3 && w.normal.is_some() => non_zero(a, "axis")?,
+        (None, Kind::Box) if D == 3 && w.normal.is_none() => {
+            let mut first = Vector::<D>::zeros();
+            first[0] = 1.0;
+            first
+        }
+        (_, Kind::Box) if D == 3 => {
+            let (span, field) = match (&w.axis, &w.normal) {
+                (Some(a), _) => (a.span(), "axis"),
+                (None, Some(n)) => (n.span(), "normal"),
+                (None, None) => (shape_span.clone(), "normal"),
+            };
+            return Err(ctx.error(
+                &span,
+                &key(field),
+                "a 3D box is turned by its `normal` and its `axis` (the direction of its first edge) together: give both, or neither for a box with its edges along x, y, z".into(),
+            ));
+        }
         (Some(a), _) => {
             return Err(ctx.error(
                 &a.span(),
                 &key("axis"),
-                "only a cylinder wall, or a spinning ball in 3D, has an axis".into(),
+                "only a cylinder wall, a box in 3D or a spinning ball in 3D has an axis".into(),
             ))
         }
         (None, _) => Vector::<D>::zeros(),
@@ -260,6 +302,34 @@ fn wall_shape<const D: usize>(
         }
         (None, _) => None,
     };
+    let size = match (&w.size, kind) {
+        (Some(s), Kind::Box) => {
+            let size = ctx.vector::<D>(s, &key("size"))?;
+            if let Some(a) = size.iter().find(|a| !(a.is_finite() && **a > 0.0)) {
+                return Err(ctx.error(
+                    &s.span(),
+                    &key("size"),
+                    format!("a box's edge lengths must be finite numbers > 0, got {a}"),
+                ));
+            }
+            size
+        }
+        (None, Kind::Box) => {
+            return Err(ctx.error(
+                &shape_span,
+                &key("size"),
+                "is required by a box wall (its edge lengths)".into(),
+            ))
+        }
+        (Some(s), _) => {
+            return Err(ctx.error(
+                &s.span(),
+                &key("size"),
+                "only a box wall has a size (a disc, ball or cylinder has a `radius`)".into(),
+            ))
+        }
+        (None, _) => Vector::<D>::zeros(),
+    };
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
@@ -270,7 +340,12 @@ fn wall_shape<const D: usize>(
             axis,
             length,
         },
+        Kind::Box => WallShape::Box { size, axis },
     };
+    if let Some(Err(why)) = shape.box_frame(normal) {
+        let span = w.axis.as_ref().map_or(shape_span, |a| a.span());
+        return Err(ctx.error(&span, &key("axis"), why));
+    }
     Ok((shape, normal))
 }
 
@@ -327,7 +402,8 @@ fn wall_spin<const D: usize>(
     Ok(axis * omega)
 }
 
-/// No particle may start inside a ball or cylinder, nor behind a plane or a disc's face.
+/// No particle may start inside a ball, a cylinder or a box, nor behind a plane or a disc's
+/// face.
 fn check_start<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
@@ -375,6 +451,32 @@ fn check_start<const D: usize>(
                 }
             });
         }
+        WallShape::Box { size, .. } => {
+            // Checked when the shape was read; a box without a frame has no inside.
+            let Some(Ok(frame)) = shape.box_frame(unit) else {
+                return Ok(());
+            };
+            let half = size * 0.5;
+            let within = |x: &Vector<D>| {
+                let local = frame.tr_mul(&(x - point));
+                (0..D).all(|k| local[k].abs() < half[k])
+            };
+            for body in bodies {
+                if let Some(x) = body.positions.iter().find(|x| within(x)) {
+                    return Err(ctx.error(
+                        &w.point.span(),
+                        &key("point"),
+                        format!(
+                            "body `{}` starts inside the box: its particle at [{}] is within the box's edges [{}] about its centre",
+                            body.name,
+                            point_text(x),
+                            point_text(&size),
+                        ),
+                    ));
+                }
+            }
+            return Ok(());
+        }
         WallShape::Plane => None,
         WallShape::Disc { radius } => Some(radius),
     };
@@ -412,9 +514,9 @@ fn check_start<const D: usize>(
 
 /// The mirrored half of a model meets the wall's mirror image. A finite wall crossing a
 /// symmetry plane must be its own mirror image: a disc (whose face lies across the plane), a
-/// ball or a cylinder lying along the plane centred on it and not moving across it; a
-/// cylinder along the plane's normal always is (its sliding is checked with the velocity); an
-/// oblique cylinder never.
+/// ball, a cylinder lying along the plane or a box with a face parallel to it, centred on it
+/// and not moving across it; a cylinder along the plane's normal always is (its sliding is
+/// checked with the velocity); an oblique cylinder or a box turned askew to it never.
 #[allow(clippy::too_many_arguments)]
 fn check_symmetry<const D: usize>(
     ctx: &Context<'_>,
@@ -426,9 +528,11 @@ fn check_symmetry<const D: usize>(
     symmetry_planes: &[SymmetryPlaneTable],
     key: &dyn Fn(&str) -> String,
 ) -> Result<(), SceneError> {
-    // Only a finite shape (which has a radius) can cross a plane.
-    let Some(radius_span) = w.radius.as_ref().map(|r| r.span()) else {
-        return Ok(());
+    // Only a finite shape (which has a radius or a size) can cross a plane.
+    let (finite_span, finite_field) = match (&w.radius, &w.size) {
+        (Some(r), _) => (r.span(), "radius"),
+        (None, Some(s)) => (s.span(), "size"),
+        (None, None) => return Ok(()),
     };
     for plane in symmetry_planes {
         let Some(a) = axis_index(plane.axis.get_ref()).filter(|&a| a < D) else {
@@ -461,7 +565,7 @@ fn check_symmetry<const D: usize>(
                         0.5 * l * along + radius * (1.0 - along * along).sqrt()
                     });
                     if along > 0.0 && (point[a] - position).abs() < reach {
-                        let axis_span = w.axis.as_ref().map_or(radius_span, |a| a.span());
+                        let axis_span = w.axis.as_ref().map_or(finite_span, |a| a.span());
                         return Err(ctx.error(
                             &axis_span,
                             &key("axis"),
@@ -476,11 +580,33 @@ fn check_symmetry<const D: usize>(
                     ("cylinder", along == 0.0 && off_centre(radius))
                 }
             }
+            WallShape::Box { size, .. } => {
+                // Checked when the shape was read.
+                let Some(Ok(frame)) = shape.box_frame(unit) else {
+                    continue;
+                };
+                // How far the box reaches along the normal: Σ a_k/2 |e_k·n|.
+                let reach: f64 = (0..D).map(|k| 0.5 * size[k] * frame[(a, k)].abs()).sum();
+                let faces_the_plane = (0..D).any(|k| frame[(a, k)].abs() == 1.0);
+                if !faces_the_plane && (point[a] - position).abs() < reach {
+                    let span = w.normal.as_ref().map_or(finite_span, |n| n.span());
+                    return Err(ctx.error(
+                        &span,
+                        &key("normal"),
+                        format!(
+                            "the box is turned so that none of its faces is parallel to the symmetry plane {} = {}, and it crosses the plane, so its mirror image is another box; turn it so that a face is parallel to the plane, or keep it clear of the plane",
+                            plane.axis.get_ref(),
+                            position,
+                        ),
+                    ));
+                }
+                ("box", off_centre(reach))
+            }
         };
         if problem {
             return Err(ctx.error(
-                &radius_span,
-                &key("radius"),
+                &finite_span,
+                &key(finite_field),
                 format!(
                     "the {what} crosses the symmetry plane {} = {position} off its centre or moves across it, so the model's mirrored half would meet another wall; centre the {what} on the plane and move it along the plane only, or keep it clear of the plane",
                     plane.axis.get_ref(),

@@ -7,7 +7,7 @@ use tlsph_materials::{
     EquationOfState, GradyKipp, JohnsonCookFailure, JohnsonCookStrength, LinearElastic,
     MaxPlasticStrainFailure, MaxStressFailure, PeerlingsSoftening, VonMisesPlasticity,
 };
-use tlsph_math::{Vector, Vector3};
+use tlsph_math::{Tensor, Vector, Vector3};
 
 /// How kernel gradients are formed in the reference configuration (numerics.md §5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -663,8 +663,8 @@ pub struct WallDescription<const D: usize> {
     pub friction: FrictionCoefficients,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
-    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc or a ball, or (3D)
-    /// a cylinder.
+    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc, a ball or a box,
+    /// or (3D) a cylinder.
     pub shape: WallShape<D>,
 }
 
@@ -698,9 +698,31 @@ pub enum WallShape<const D: usize> {
         /// L \[m\]: `None` for an unbounded cylinder.
         length: Option<f64>,
     },
+    /// (2D and 3D) The rectangle or rectangular block of these edge lengths centred at
+    /// `point`, its edges along the frame of `normal` and, in 3D, `axis`
+    /// (`tlsph_contact::RigidBox::frame`): a rectangular punch with sharp edges, a die, a
+    /// step (`tlsph_contact::RigidBox`).
+    Box {
+        /// Edge lengths a_k along the frame's e_k: (along the normal turned clockwise, along
+        /// the normal) in 2D, (along the axis, along normal × axis, along the normal) in 3D
+        /// \[m\].
+        size: Vector<D>,
+        /// (3D) Direction of the box's first edge, at right angles to `normal` (need not be
+        /// unit); not used in 2D.
+        axis: Vector<D>,
+    },
 }
 
 impl<const D: usize> WallShape<D> {
+    /// The edge frame of a box with the wall's `normal` (its columns e_k, from
+    /// `tlsph_contact::RigidBox::frame`, or why there is none); `None` for any other shape.
+    pub fn box_frame(&self, normal: Vector<D>) -> Option<Result<Tensor<D>, String>> {
+        match self {
+            WallShape::Box { axis, .. } => Some(tlsph_contact::RigidBox::frame(normal, *axis)),
+            _ => None,
+        }
+    }
+
     /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its
     /// own axis of symmetry, so the spin moves its surface and not its shape. `Ok(Some(ê))`: a
     /// plane's or a disc's normal, a cylinder's axis (3D), z for a ball in 2D; `Ok(None)`: any
@@ -715,6 +737,7 @@ impl<const D: usize> WallShape<D> {
             }
             (3, WallShape::Ball { .. }) => Ok(None),
             (2, WallShape::Ball { .. }) => Ok(Some(Vector3::z())),
+            (_, WallShape::Box { .. }) => Err("a box cannot spin: it has no axis about which turning leaves its shape where it is".into()),
             (2, _) => Err("in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape".into()),
             _ => Err(format!("a {D}D wall cannot spin")),
         }

@@ -25,7 +25,7 @@ use crate::updated_lagrangian::UpdatedLagrangian;
 use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_contact::{
-    FiniteCylinder, FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall,
+    FiniteCylinder, FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidBox,
     RigidCylinder, RigidPlane, WallGeometry,
 };
 use tlsph_kernels::Kernel;
@@ -1965,7 +1965,9 @@ fn build_effects<const D: usize>(
     for wall in &model.effects.walls {
         // A ball or a cylinder has no normal; a cylinder's axis is checked like a normal.
         let direction = match wall.shape {
-            WallShape::Plane | WallShape::Disc { .. } => Some(("normal", wall.normal)),
+            WallShape::Plane | WallShape::Disc { .. } | WallShape::Box { .. } => {
+                Some(("normal", wall.normal))
+            }
             WallShape::Ball { .. } => None,
             WallShape::Cylinder { axis, .. } => Some(("axis", axis)),
         };
@@ -2086,6 +2088,22 @@ fn build_effects<const D: usize>(
                         push_wall(&mut effects, travel, wall, friction);
                     }
                 }
+            }
+            WallShape::Box { size, axis } => {
+                let frame = RigidBox::frame(normal, axis).map_err(wall_error)?;
+                if !size.iter().all(|a| a.is_finite() && *a > 0.0) {
+                    return Err(wall_error(format!(
+                        "a box's edge lengths must be finite and > 0, got {:?}",
+                        size.as_slice()
+                    )));
+                }
+                let block = RigidBox::new(point, frame, size, &h, &c0, &dx);
+                push_wall(
+                    &mut effects,
+                    travel,
+                    RigidWall::new(name, block, motion),
+                    (coefficients, point),
+                );
             }
         }
     }

@@ -1,11 +1,11 @@
 //! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
-//! cylinder, the finite cylinder), the surface point and spin velocity their friction reads, and their Coulomb
+//! cylinder, the finite cylinder, the box), the surface point and spin velocity their friction reads, and their Coulomb
 //! friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
     spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
-    FrictionCoefficients, RigidBall, RigidCylinder, RigidPlane, Vector, WallGeometry,
+    FrictionCoefficients, RigidBall, RigidBox, RigidCylinder, RigidPlane, Vector, WallGeometry,
     WALL_STIFFNESS_FACTOR,
 };
 use tlsph_math::Vector3;
@@ -382,6 +382,103 @@ fn a_finite_cylinder_pushes_out_of_its_mantle_its_end_faces_and_round_its_rims()
     .map(|x| (x.x, x.y, x.z))
     .collect();
     assert_push_is_energy_gradient(&cylinder, &points);
+}
+
+#[test]
+fn a_box_pushes_off_its_faces_round_its_edges_and_corners_and_out_of_its_inside() {
+    // Box of edges 4 × 2 × 6 centred at (1, 0, 0), its normal along (0, 1, 1)/√2 and its axis
+    // along x, particle contact radius ½: δ = ½ − s with s the distance to the solid.
+    let normal = Vector::<3>::new(0.0, 1.0, 1.0);
+    let frame = RigidBox::<3>::frame(normal * 2.0, Vector::<3>::new(3.0, 0.0, 0.0)).unwrap();
+    let e0 = Vector::<3>::x();
+    let e2 = normal.normalize();
+    let e1 = e2.cross(&e0);
+    assert_relative_eq!(frame.column(0).into_owned(), e0, epsilon = 1e-15);
+    assert_relative_eq!(frame.column(1).into_owned(), e1, epsilon = 1e-15);
+    assert_relative_eq!(frame.column(2).into_owned(), e2, epsilon = 1e-15);
+    let centre = Vector::<3>::new(1.0, 0.0, 0.0);
+    let size = Vector::<3>::new(4.0, 2.0, 6.0);
+    let block = RigidBox::<3>::new(centre, frame, size, &[1.2], &[3.0], &[1.0]);
+    let at = |a: f64, b: f64, c: f64| centre + e0 * a + e1 * b + e2 * c;
+    let check = |x: Vector<3>, delta: f64, n: Vector<3>| {
+        let (d, direction) = block.contact(0, x);
+        assert_relative_eq!(d, delta, epsilon = 1e-13);
+        assert_relative_eq!(direction, n, epsilon = 1e-13);
+        // The surface point a wall's friction reads is the nearest one.
+        let y = surface_point(&block, 0, x, (d, direction));
+        assert_relative_eq!(block.distance(y).0, 0.0, epsilon = 1e-13);
+    };
+    // In front of each face, anywhere over it: the plane's law.
+    check(at(0.3, -0.9, 3.2), 0.3, e2);
+    check(at(-1.9, 0.5, -3.4), 0.1, -e2);
+    check(at(2.1, 0.0, 2.9), 0.4, e0);
+    check(at(0.0, -1.45, -1.0), 0.05, -e1);
+    // Past an edge (two faces): away from the nearest edge point; past a corner: from it.
+    check(
+        at(2.2, 0.3, 3.1),
+        0.5 - 0.2_f64.hypot(0.1),
+        (e0 * 0.2 + e2 * 0.1) / 0.2_f64.hypot(0.1),
+    );
+    let corner = Vector::<3>::new(-0.1, -0.2, 0.2);
+    check(
+        at(-2.1, -1.2, 3.2),
+        0.5 - corner.norm(),
+        (e0 * corner.x + e1 * corner.y + e2 * corner.z) / corner.norm(),
+    );
+    assert_eq!(block.contact(0, at(0.0, 0.0, 3.6)).0, 0.0);
+    assert_eq!(block.contact(0, at(2.4, 1.4, 0.0)).0, 0.0);
+    // Pushed inside: out through the nearest face, by the contact radius plus the depth.
+    check(at(0.5, 0.2, 2.6), 0.9, e2);
+    check(at(-1.8, 0.1, 0.0), 0.7, -e0);
+    check(at(0.0, -0.7, -1.0), 0.8, -e1);
+    // In each region, including off the planes of symmetry of the box.
+    let points: Vec<(f64, f64, f64)> = [
+        at(0.3, -0.9, 3.2),
+        at(2.1, 0.4, 2.9),
+        at(2.2, 0.3, 3.1),
+        at(-2.1, -1.2, 3.2),
+        at(0.5, 0.2, 2.6),
+        at(-1.8, 0.1, 0.3),
+    ]
+    .iter()
+    .map(|x| (x.x, x.y, x.z))
+    .collect();
+    assert_push_is_energy_gradient(&block, &points);
+}
+
+#[test]
+fn a_box_frame_is_right_handed_about_its_normal_and_refuses_a_slanted_axis() {
+    // 2D: the normal y gives the coordinate axes, and e_0 is the normal turned clockwise.
+    let frame = RigidBox::<2>::frame(Vector::<2>::new(0.0, 2.0), Vector::<2>::zeros()).unwrap();
+    assert_eq!(frame, tlsph_math::Tensor::<2>::identity());
+    let frame = RigidBox::<2>::frame(Vector::<2>::new(1.0, 1.0), Vector::<2>::zeros()).unwrap();
+    let r = 0.5_f64.sqrt();
+    assert_relative_eq!(
+        frame.column(0).into_owned(),
+        Vector::<2>::new(r, -r),
+        epsilon = 1e-15
+    );
+    assert_relative_eq!(frame.determinant(), 1.0, epsilon = 1e-15);
+    // A 2D rectangle of 2 × 1 on its frame: pushes off its long face like the plane.
+    let rectangle = RigidBox::<2>::new(
+        Vector::<2>::zeros(),
+        tlsph_math::Tensor::<2>::identity(),
+        Vector::<2>::new(2.0, 1.0),
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let (delta, n) = rectangle.contact(0, Vector::<2>::new(0.9, 0.7));
+    assert_relative_eq!(delta, 0.3, epsilon = 1e-15);
+    assert_eq!(n, Vector::<2>::y());
+    // 3D: normal z and axis x give the coordinate axes.
+    let frame = RigidBox::<3>::frame(Vector::<3>::z(), Vector::<3>::x()).unwrap();
+    assert_eq!(frame, tlsph_math::Tensor::<3>::identity());
+    let slanted = RigidBox::<3>::frame(Vector::<3>::z(), Vector::<3>::new(1.0, 0.0, 0.1));
+    assert!(slanted.unwrap_err().contains("right angles"));
+    let zero = RigidBox::<3>::frame(Vector::<3>::zeros(), Vector::<3>::x());
+    assert!(zero.unwrap_err().contains("normal"));
+    assert!(RigidBox::<1>::frame(Vector::<1>::x(), Vector::<1>::x()).is_err());
 }
 
 #[test]

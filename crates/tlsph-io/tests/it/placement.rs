@@ -598,6 +598,136 @@ fn a_finite_cylinder_is_read_placed_and_checked() {
 }
 
 #[test]
+fn a_box_wall_is_read_placed_and_checked() {
+    // A die over the half beam: a block 6 × 6 × 4 mm centred on the symmetry plane x = 0, its
+    // bottom face 4 mm up, on the beam's top face; edges along x, y, z without a normal.
+    let die = HALF_BEND.replace(
+        "shape = \"cylinder\"\npoint = [0.0, 2.0e-3, 7.0e-3]\naxis = [0.0, 1.0, 0.0]\nradius = 3.0e-3\n",
+        "shape = \"box\"\npoint = [0.0, 2.0e-3, 6.0e-3]\nsize = [6.0e-3, 6.0e-3, 4.0e-3]\n",
+    );
+    assert!(die.contains("shape = \"box\""));
+    let scene = parse_scene(&die, "die.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    let wall = &model.effects.walls[0];
+    assert_eq!(
+        wall.shape,
+        WallShape::Box {
+            size: tlsph_math::Vector::<3>::new(6.0e-3, 6.0e-3, 4.0e-3),
+            axis: tlsph_math::Vector::<3>::x(),
+        }
+    );
+    assert_eq!(wall.normal, tlsph_math::Vector::<3>::z());
+    let refused = |text: &str, field: &str, needle: &str, line: &str| {
+        let e = error_of(text);
+        assert_eq!(e.field, format!("wall[roller].{field}"), "{e}");
+        assert!(e.message.contains(needle), "{e}");
+        assert_eq!(e.line, Some(line_of(text, line)), "{e}");
+    };
+    let size_line = "size = [6.0e-3, 6.0e-3, 4.0e-3]";
+    // Sunk 1 mm into the beam: its top layer (z = 3.5 mm) starts inside.
+    let sunk = die.replace(
+        "point = [0.0, 2.0e-3, 6.0e-3]",
+        "point = [0.0, 2.0e-3, 5.0e-3]",
+    );
+    refused(
+        &sunk,
+        "point",
+        "starts inside the box",
+        "point = [0.0, 2.0e-3, 5.0e-3]",
+    );
+    // Its keys: a size is required, positive, and only a box's; a box has no radius.
+    let no_size = die.replace(&format!("{size_line}\n"), "");
+    refused(&no_size, "size", "is required by a box", "shape = \"box\"");
+    let flat = die.replace(size_line, "size = [6.0e-3, 0.0, 4.0e-3]");
+    refused(&flat, "size", "> 0", "size = [6.0e-3, 0.0, 4.0e-3]");
+    let rounded = die.replace(size_line, &format!("{size_line}\nradius = 1.0e-3"));
+    refused(&rounded, "radius", "not a radius", "radius = 1.0e-3");
+    let ball = HALF_BEND
+        .replace("shape = \"cylinder\"", "shape = \"ball\"")
+        .replace("axis = [0.0, 1.0, 0.0]", "size = [1.0, 1.0, 1.0]");
+    refused(&ball, "size", "only a box", "size = [1.0, 1.0, 1.0]");
+    // Turned in 3D by its normal and its axis together, at right angles.
+    let normal_only = die.replace(size_line, &format!("{size_line}\nnormal = [0.0, 0.0, 1.0]"));
+    refused(
+        &normal_only,
+        "normal",
+        "give both",
+        "normal = [0.0, 0.0, 1.0]",
+    );
+    let axis_only = die.replace(size_line, &format!("{size_line}\naxis = [1.0, 0.0, 0.0]"));
+    refused(&axis_only, "axis", "give both", "axis = [1.0, 0.0, 0.0]");
+    let turned = |axis: &str, x: &str| {
+        die.replace(
+            size_line,
+            &format!("{size_line}\nnormal = [0.0, 0.0, 1.0]\naxis = {axis}"),
+        )
+        .replace(
+            "point = [0.0, 2.0e-3, 6.0e-3]",
+            &format!("point = [{x}, 2.0e-3, 6.0e-3]"),
+        )
+    };
+    refused(
+        &turned("[1.0, 0.0, 0.5]", "0.0"),
+        "axis",
+        "right angles",
+        "axis = [1.0, 0.0, 0.5]",
+    );
+    parse_scene(&turned("[1.0, 0.0, 0.0]", "0.0"), "square.toml").unwrap();
+    // Across the symmetry plane x = 0: its own mirror image only with a face parallel to the
+    // plane, centred on it and not sliding across it. Turned 45° about z it reaches
+    // 3√2 = 4.24 mm along x: clear at x = 4.5 mm, crossing at x = 4 mm.
+    let off_centre = die.replace(
+        "point = [0.0, 2.0e-3, 6.0e-3]",
+        "point = [1.0e-3, 2.0e-3, 6.0e-3]",
+    );
+    refused(
+        &off_centre,
+        "size",
+        "the box crosses the symmetry plane x = 0",
+        size_line,
+    );
+    let across = die.replace("velocity = [0.0, 0.0, -1.0]", "velocity = [1.0, 0.0, -1.0]");
+    refused(
+        &across,
+        "size",
+        "the box crosses the symmetry plane x = 0",
+        size_line,
+    );
+    parse_scene(&turned("[1.0, 1.0, 0.0]", "4.5e-3"), "clear.toml").unwrap();
+    let askew = turned("[1.0, 1.0, 0.0]", "4.0e-3");
+    refused(
+        &askew,
+        "normal",
+        "none of its faces is parallel",
+        "normal = [0.0, 0.0, 1.0]",
+    );
+    // A box cannot spin.
+    let spun = die.replace(
+        size_line,
+        &format!("{size_line}\nfriction = 0.2\nspin = 10.0"),
+    );
+    refused(&spun, "spin", "a box cannot spin", "spin = 10.0");
+    // In 2D a rectangle, turned by its normal alone: an axis is refused.
+    let rectangle = TWO_BLOCKS.replace("GAP", "10.0e-3")
+        + "\n[[wall]]\nname = \"roller\"\nshape = \"box\"\npoint = [5.0e-3, 14.0e-3]\nsize = [4.0e-3, 2.0e-3]\nnormal = [1.0, 2.0]\n";
+    let scene = parse_scene(&rectangle, "rectangle.toml").unwrap();
+    let tlsph_io::DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert_eq!(
+        model.effects.walls[1].normal,
+        tlsph_math::Vector::<2>::new(1.0, 2.0)
+    );
+    let with_axis = rectangle.replace(
+        "normal = [1.0, 2.0]",
+        "normal = [1.0, 2.0]\naxis = [1.0, 0.0]",
+    );
+    refused(&with_axis, "axis", "a box in 3D", "axis = [1.0, 0.0]");
+}
+
+#[test]
 fn a_spin_is_read_about_the_walls_own_axis_and_checked() {
     // The half bend without its symmetry plane: the roller spins about its axis (y).
     let whole = HALF_BEND.replace("[[symmetry_plane]]\naxis = \"x\"\nposition = 0.0\n", "");
