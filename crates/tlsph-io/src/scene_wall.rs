@@ -168,6 +168,9 @@ fn wall_shape<const D: usize>(
         ],
     )?;
     let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
+    let refuse = |span: std::ops::Range<usize>, field: &str, message: &str| {
+        Err(ctx.error(&span, &key(field), message.into()))
+    };
     if kind == Kind::Cylinder && D != 3 {
         return Err(ctx.error(
             &shape_span,
@@ -283,23 +286,17 @@ fn wall_shape<const D: usize>(
             ));
         }
         (Some(a), _) => {
-            return Err(ctx.error(
-                &a.span(),
-                &key("axis"),
-                "only a cylinder wall, a box in 3D or a spinning ball in 3D has an axis".into(),
-            ))
+            return refuse(
+                a.span(),
+                "axis",
+                "only a cylinder wall, a box in 3D or a spinning ball in 3D has an axis",
+            )
         }
         (None, _) => Vector::<D>::zeros(),
     };
     let length = match (&w.length, kind) {
         (Some(l), Kind::Cylinder) => Some(ctx.positive(l, &key("length"))?),
-        (Some(l), _) => {
-            return Err(ctx.error(
-                &l.span(),
-                &key("length"),
-                "only a cylinder wall has a length".into(),
-            ))
-        }
+        (Some(l), _) => return refuse(l.span(), "length", "only a cylinder wall has a length"),
         (None, _) => None,
     };
     let size = match (&w.size, kind) {
@@ -315,18 +312,18 @@ fn wall_shape<const D: usize>(
             size
         }
         (None, Kind::Box) => {
-            return Err(ctx.error(
-                &shape_span,
-                &key("size"),
-                "is required by a box wall (its edge lengths)".into(),
-            ))
+            return refuse(
+                shape_span,
+                "size",
+                "is required by a box wall (its edge lengths)",
+            )
         }
         (Some(s), _) => {
-            return Err(ctx.error(
-                &s.span(),
-                &key("size"),
-                "only a box wall has a size (a disc, ball or cylinder has a `radius`)".into(),
-            ))
+            return refuse(
+                s.span(),
+                "size",
+                "only a box wall has a size (a disc, ball or cylinder has a `radius`)",
+            )
         }
         (None, _) => Vector::<D>::zeros(),
     };

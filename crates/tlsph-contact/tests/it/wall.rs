@@ -210,11 +210,11 @@ fn a_finite_wall_pushes_off_its_faces_and_around_its_rim() {
 
 /// The push k δ n̂ of `wall` must be −∇(½ k δ²) at every point of `points` (all touching),
 /// or a particle moving along the wall would gain or lose energy: central differences.
-fn assert_push_is_energy_gradient(wall: &impl WallGeometry<3>, points: &[(f64, f64, f64)]) {
+fn assert_push_is_energy_gradient(wall: &impl WallGeometry<3>, points: &[Vector<3>]) {
     let energy = |x: Vector<3>| 0.5 * wall.contact(0, x).0.powi(2);
     let eps = 1e-6;
-    for &(x, y, z) in points {
-        let at = Vector::<3>::new(x, y, z);
+    for &at in points {
+        let (x, y, z) = (at.x, at.y, at.z);
         let (delta, n) = wall.contact(0, at);
         assert!(delta > 0.0, "({x}, {y}, {z}) must touch");
         let push = n * delta;
@@ -245,7 +245,8 @@ fn a_finite_wall_pushes_down_the_gradient_of_its_spring_energy() {
             (2.2, -0.3, -0.15),
             (0.0, 2.3, 0.0),
             (-1.6, -1.3, 0.4),
-        ],
+        ]
+        .map(|(x, y, z)| Vector::<3>::new(x, y, z)),
     );
 }
 
@@ -272,7 +273,8 @@ fn a_ball_pushes_radially_by_the_penetration_of_its_surface() {
             (2.2, 1.6, 0.1),
             (-0.4, -1.2, 1.1),
             (1.0, 2.45, 0.0),
-        ],
+        ]
+        .map(|(x, y, z)| Vector::<3>::new(x, y, z)),
     );
 }
 
@@ -316,8 +318,25 @@ fn a_cylinder_pushes_away_from_its_axis_by_the_penetration_of_its_surface() {
             (2.2, 1.6, 0.1),
             (-0.4, -1.2, 1.1),
             (3.2, 5.0, 5.3),
-        ],
+        ]
+        .map(|(x, y, z)| Vector::<3>::new(x, y, z)),
     );
+}
+
+/// The contact of particle 0 at `x` with `wall` must be (δ, n̂) = `expected`, and the
+/// surface point a wall's friction reads must lie on the surface, where the wall's signed
+/// `distance` is 0.
+fn assert_contact(
+    wall: &impl WallGeometry<3>,
+    distance: impl Fn(Vector<3>) -> f64,
+    x: Vector<3>,
+    expected: (f64, Vector<3>),
+) {
+    let (d, direction) = wall.contact(0, x);
+    assert_relative_eq!(d, expected.0, epsilon = 1e-13);
+    assert_relative_eq!(direction, expected.1, epsilon = 1e-13);
+    let y = surface_point(wall, 0, x, (d, direction));
+    assert_relative_eq!(distance(y), 0.0, epsilon = 1e-13);
 }
 
 #[test]
@@ -337,12 +356,7 @@ fn a_finite_cylinder_pushes_out_of_its_mantle_its_end_faces_and_round_its_rims()
     let across = Vector::<3>::new(0.0, 1.0, -1.0).normalize();
     let at = |along: f64, r: f64| Vector::<3>::new(1.0, 0.0, 0.0) + axis * along + across * r;
     let check = |x: Vector<3>, delta: f64, n: Vector<3>| {
-        let (d, direction) = cylinder.contact(0, x);
-        assert_relative_eq!(d, delta, epsilon = 1e-13);
-        assert_relative_eq!(direction, n, epsilon = 1e-13);
-        // The surface point a spinning cylinder's friction reads is the nearest one.
-        let y = surface_point(&cylinder, 0, x, (d, direction));
-        assert_relative_eq!(cylinder.distance(y).0, 0.0, epsilon = 1e-13);
+        assert_contact(&cylinder, |y| cylinder.distance(y).0, x, (delta, n))
     };
     // Beside the mantle, anywhere along the length: the unbounded cylinder's law.
     for along in [-1.9, 0.0, 1.5] {
@@ -369,7 +383,7 @@ fn a_finite_cylinder_pushes_out_of_its_mantle_its_end_faces_and_round_its_rims()
     check(at(1.5, 0.5), 1.0, axis);
     check(at(0.2, -1.7), 0.8, -across);
     // In each region, and off the plane of the cases above (across along x).
-    let points: Vec<(f64, f64, f64)> = [
+    let points = [
         at(1.0, 2.3),
         at(2.3, 1.0),
         at(2.2, 2.2),
@@ -377,10 +391,7 @@ fn a_finite_cylinder_pushes_out_of_its_mantle_its_end_faces_and_round_its_rims()
         at(1.5, 0.5),
         at(0.2, -1.7),
         at(2.15, 0.0) + Vector::<3>::new(2.1, 0.0, 0.0),
-    ]
-    .iter()
-    .map(|x| (x.x, x.y, x.z))
-    .collect();
+    ];
     assert_push_is_energy_gradient(&cylinder, &points);
 }
 
@@ -401,12 +412,7 @@ fn a_box_pushes_off_its_faces_round_its_edges_and_corners_and_out_of_its_inside(
     let block = RigidBox::<3>::new(centre, frame, size, &[1.2], &[3.0], &[1.0]);
     let at = |a: f64, b: f64, c: f64| centre + e0 * a + e1 * b + e2 * c;
     let check = |x: Vector<3>, delta: f64, n: Vector<3>| {
-        let (d, direction) = block.contact(0, x);
-        assert_relative_eq!(d, delta, epsilon = 1e-13);
-        assert_relative_eq!(direction, n, epsilon = 1e-13);
-        // The surface point a wall's friction reads is the nearest one.
-        let y = surface_point(&block, 0, x, (d, direction));
-        assert_relative_eq!(block.distance(y).0, 0.0, epsilon = 1e-13);
+        assert_contact(&block, |y| block.distance(y).0, x, (delta, n))
     };
     // In front of each face, anywhere over it: the plane's law.
     check(at(0.3, -0.9, 3.2), 0.3, e2);
@@ -432,17 +438,14 @@ fn a_box_pushes_off_its_faces_round_its_edges_and_corners_and_out_of_its_inside(
     check(at(-1.8, 0.1, 0.0), 0.7, -e0);
     check(at(0.0, -0.7, -1.0), 0.8, -e1);
     // In each region, including off the planes of symmetry of the box.
-    let points: Vec<(f64, f64, f64)> = [
+    let points = [
         at(0.3, -0.9, 3.2),
         at(2.1, 0.4, 2.9),
         at(2.2, 0.3, 3.1),
         at(-2.1, -1.2, 3.2),
         at(0.5, 0.2, 2.6),
         at(-1.8, 0.1, 0.3),
-    ]
-    .iter()
-    .map(|x| (x.x, x.y, x.z))
-    .collect();
+    ];
     assert_push_is_energy_gradient(&block, &points);
 }
 
