@@ -6,7 +6,7 @@
 use crate::scene::{DimensionModel, Scene};
 use std::fmt;
 use tlsph_materials::EquationOfState;
-use tlsph_solver::{Formulation, FrictionCoefficients, Model};
+use tlsph_solver::{Formulation, FrictionCoefficients, Model, WallShape};
 
 /// One body of a [`SceneOverview`].
 #[derive(Debug, Clone, PartialEq)]
@@ -128,6 +128,11 @@ fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
 /// 0.07 %); under the penalty law the surface zig-zags once pressed hard or sheared by
 /// friction. Both were measured and are described in docs/scene-format.md.
 ///
+/// A box wall in a total-Lagrangian scene without hourglass control: its sharp edges make a
+/// kink in the displacement that the zig-zag mode takes up (measured: a punch turned 30° to
+/// the particle rows threw particles beside its faces off at a third of the sound speed as it
+/// withdrew; with coefficient = 1 they stayed put).
+///
 /// A static friction coefficient above the kinetic one without a decay (walls and the penalty
 /// contact): the hold is decided per particle or pair, a slip starts where the ratio of
 /// tangential to normal load peaks, and with an instant drop to μ_k it spreads (measured:
@@ -156,6 +161,20 @@ fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
                  (coefficient = 1 held the cases measured in docs/scene-format.md)"
                     .into(),
             );
+        }
+        for wall in effects
+            .walls
+            .iter()
+            .filter(|w| matches!(w.shape, WallShape::Box { .. }))
+        {
+            notes.push(format!(
+                "wall `{}` is a box in a total-Lagrangian scene without [hourglass_control]: \
+                 its sharp edges, pressed into a body, can drive the particle lattice's \
+                 zig-zag mode and throw surface particles off beside its faces; declare \
+                 hourglass control (coefficient = 1 held the case measured in \
+                 docs/scene-format.md)",
+                wall.name
+            ));
         }
     }
     let abrupt = |f: &FrictionCoefficients| f.decay.is_none() && f.static_coefficient > f.kinetic;

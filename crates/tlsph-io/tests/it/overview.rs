@@ -155,6 +155,35 @@ fn contact_without_hourglass_control_gets_a_note() {
 }
 
 #[test]
+fn a_box_wall_without_hourglass_control_gets_a_note() {
+    // docs/scene-format.md, boxes: a box's sharp edges drive TLSPH's zig-zag mode. The check
+    // names each box wall of a total-Lagrangian scene without hourglass control, and is
+    // silent for the other shapes, with the control, or in updated-Lagrangian.
+    let notes = |text: &str| parse_scene(text, "blocks.toml").unwrap().overview().notes;
+    let with_box = format!(
+        "{TWO_BLOCKS}\n[[wall]]\nname = \"die\"\nshape = \"box\"\npoint = [5.0e-3, 14.0e-3]\nsize = [4.0e-3, 2.0e-3]\n"
+    );
+    let advised = notes(&with_box);
+    assert_eq!(advised.len(), 1, "{advised:?}");
+    assert!(
+        advised[0].starts_with("wall `die` is a box") && advised[0].contains("[hourglass_control]"),
+        "{advised:?}"
+    );
+    let disc = with_box
+        .replace("shape = \"box\"", "shape = \"disc\"\nnormal = [0.0, -1.0]")
+        .replace("size = [4.0e-3, 2.0e-3]", "radius = 2.0e-3");
+    assert!(notes(&disc).is_empty(), "{:?}", notes(&disc));
+    let controlled = format!("{with_box}\n[hourglass_control]\ncoefficient = 1.0\n");
+    assert!(notes(&controlled).is_empty());
+    let updated = with_box.replace(
+        "formulation = \"total-lagrangian-corrected\"",
+        "formulation = \"updated-lagrangian\"",
+    );
+    assert_ne!(updated, with_box);
+    assert!(notes(&updated).is_empty());
+}
+
+#[test]
 fn static_friction_without_a_decay_gets_a_note() {
     // docs/scene-format.md, wall friction and penalty contact: with μ_s > μ_k and no decay, a
     // slip that starts at a face's edge runs through the face. The check names each such
