@@ -16,7 +16,7 @@
 //!   rim, [`RigidBall`]: a rigid sphere (an indenter), [`RigidCylinder`]: a rigid cylinder of
 //!   unbounded length (a roller), [`FiniteCylinder`]: a solid cylinder with flat ends (a
 //!   cylindrical punch, a pin), [`RigidBox`]: a rectangle or a rectangular block with sharp
-//!   edges (a rectangular punch, a die, a step), all behind [`WallGeometry`]; and their
+//!   or rounded edges (a rectangular punch, a die, a step), all behind [`WallGeometry`]; and their
 //!   Coulomb friction
 //!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
 //!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take

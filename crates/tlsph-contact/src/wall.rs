@@ -458,13 +458,19 @@ wall_by_distance!(FiniteCylinder);
 /// along ±e_k in front of a face, away from the nearest edge or corner point past them (so a
 /// particle sliding round an edge is released smoothly); one pushed inside is pushed out
 /// through the nearest face. The push is the gradient of the spring's ½ k δ².
+///
+/// With an edge radius ρ ([`RigidBox::with_edge_radius`]) the edges and corners are rounded:
+/// the box is the set of points within ρ of the box of edges a_k − 2ρ, so its distance is
+/// that box's less ρ, with the same push direction.
 #[derive(Debug, Clone)]
 pub struct RigidBox<const D: usize> {
     centre: Vector<D>,
     /// The edge directions e_k as columns (orthonormal).
     frame: Tensor<D>,
-    /// a_k/2 \[m\].
-    half_size: Vector<D>,
+    /// a_k/2 − ρ: the half edges of the box whose rounding this is \[m\].
+    inner_half_size: Vector<D>,
+    /// ρ \[m\] (0: sharp edges).
+    edge_radius: f64,
     springs: PenaltySprings,
 }
 
@@ -483,8 +489,19 @@ impl<const D: usize> RigidBox<D> {
         Self {
             centre,
             frame,
-            half_size: size * 0.5,
+            inner_half_size: size * 0.5,
+            edge_radius: 0.0,
             springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+
+    /// The same box with its edges and corners rounded to the radius `radius` ρ, keeping its
+    /// edge lengths (0 ≤ ρ ≤ a_k/2, which the caller checks; a_k/2 on every edge is a ball).
+    pub fn with_edge_radius(self, radius: f64) -> Self {
+        Self {
+            inner_half_size: self.inner_half_size.add_scalar(self.edge_radius - radius),
+            edge_radius: radius,
+            ..self
         }
     }
 
@@ -536,14 +553,20 @@ impl<const D: usize> RigidBox<D> {
     pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
         let local = self.frame.tr_mul(&(x - self.centre));
         let side = local.map(|q| if q < 0.0 { -1.0 } else { 1.0 });
-        let past = local.abs() - self.half_size;
+        let past = local.abs() - self.inner_half_size;
         let outside = past.map(|p| p.max(0.0));
         let s = outside.norm();
         if s > 0.0 {
-            (s, self.frame * outside.component_mul(&side) / s)
+            (
+                s - self.edge_radius,
+                self.frame * outside.component_mul(&side) / s,
+            )
         } else {
             let nearest = past.imax();
-            (past[nearest], self.frame.column(nearest) * side[nearest])
+            (
+                past[nearest] - self.edge_radius,
+                self.frame.column(nearest) * side[nearest],
+            )
         }
     }
 }

@@ -123,7 +123,8 @@ pub(crate) struct SymmetryPlaneTable {
     pub position: Spanned<f64>,
 }
 
-/// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, or a box of `size`,
+/// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, or a box of `size`
+/// (optionally with an `edge_radius`),
 /// frictionless unless `friction` is given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -152,6 +153,8 @@ pub(crate) struct WallTable {
     /// A box's edge lengths, along its frame (its edges along the coordinate axes unless
     /// `normal`, and in 3D `axis`, turn it).
     pub size: Option<Spanned<Vec<f64>>>,
+    /// The radius to which a box's edges and corners are rounded (none: sharp).
+    pub edge_radius: Option<Spanned<f64>>,
     /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
     /// normal, a cylinder's or a ball's `axis`, z for a ball in 2D \[rad/s\].
     pub spin: Option<Spanned<f64>>,

@@ -327,6 +327,28 @@ fn wall_shape<const D: usize>(
         }
         (None, _) => Vector::<D>::zeros(),
     };
+    let edge_radius = match (&w.edge_radius, kind) {
+        (Some(r), Kind::Box) => {
+            let radius = *r.get_ref();
+            let half_shortest = 0.5 * size.min();
+            if !(radius.is_finite() && radius >= 0.0 && radius <= half_shortest) {
+                return refuse(
+                    r.span(),
+                    "edge_radius",
+                    &format!("must be ≥ 0 and at most half the box's shortest edge, {half_shortest:e}, got {radius}"),
+                );
+            }
+            radius
+        }
+        (Some(r), _) => {
+            return refuse(
+                r.span(),
+                "edge_radius",
+                "only a box wall has an edge radius",
+            )
+        }
+        (None, _) => 0.0,
+    };
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
@@ -337,7 +359,11 @@ fn wall_shape<const D: usize>(
             axis,
             length,
         },
-        Kind::Box => WallShape::Box { size, axis },
+        Kind::Box => WallShape::Box {
+            size,
+            axis,
+            edge_radius,
+        },
     };
     if let Some(Err(why)) = shape.box_frame(normal) {
         let span = w.axis.as_ref().map_or(shape_span, |a| a.span());
@@ -450,23 +476,19 @@ fn check_start<const D: usize>(
         }
         WallShape::Box { size, .. } => {
             // Checked when the shape was read; a box without a frame has no inside.
-            let Some(Ok(frame)) = shape.box_frame(unit) else {
+            let Some(Ok(block)) = shape.rigid_box(point, unit, (&[], &[], &[])) else {
                 return Ok(());
             };
-            let half = size * 0.5;
-            let within = |x: &Vector<D>| {
-                let local = frame.tr_mul(&(x - point));
-                (0..D).all(|k| local[k].abs() < half[k])
-            };
             for body in bodies {
-                if let Some(x) = body.positions.iter().find(|x| within(x)) {
+                if let Some(x) = body.positions.iter().find(|x| block.distance(**x).0 < 0.0) {
                     return Err(ctx.error(
                         &w.point.span(),
                         &key("point"),
                         format!(
-                            "body `{}` starts inside the box: its particle at [{}] is within the box's edges [{}] about its centre",
+                            "body `{}` starts inside the box: its particle at [{}] is {:.3e} inside the surface of the box of edges [{}] about its centre",
                             body.name,
                             point_text(x),
+                            -block.distance(*x).0,
                             point_text(&size),
                         ),
                     ));
@@ -577,13 +599,18 @@ fn check_symmetry<const D: usize>(
                     ("cylinder", along == 0.0 && off_centre(radius))
                 }
             }
-            WallShape::Box { size, .. } => {
+            WallShape::Box {
+                size, edge_radius, ..
+            } => {
                 // Checked when the shape was read.
                 let Some(Ok(frame)) = shape.box_frame(unit) else {
                     continue;
                 };
-                // How far the box reaches along the normal: Σ a_k/2 |e_k·n|.
-                let reach: f64 = (0..D).map(|k| 0.5 * size[k] * frame[(a, k)].abs()).sum();
+                // How far the box reaches along the normal: Σ (a_k/2 − ρ) |e_k·n| + ρ.
+                let reach: f64 = (0..D)
+                    .map(|k| (0.5 * size[k] - edge_radius) * frame[(a, k)].abs())
+                    .sum::<f64>()
+                    + edge_radius;
                 let faces_the_plane = (0..D).any(|k| frame[(a, k)].abs() == 1.0);
                 if !faces_the_plane && (point[a] - position).abs() < reach {
                     let span = w.normal.as_ref().map_or(finite_span, |n| n.span());

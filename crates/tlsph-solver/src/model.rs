@@ -710,6 +710,9 @@ pub enum WallShape<const D: usize> {
         /// (3D) Direction of the box's first edge, at right angles to `normal` (need not be
         /// unit); not used in 2D.
         axis: Vector<D>,
+        /// Radius ρ to which its edges and corners are rounded, 0 ≤ ρ ≤ a_k/2 (0: sharp)
+        /// \[m\].
+        edge_radius: f64,
     },
 }
 
@@ -721,6 +724,43 @@ impl<const D: usize> WallShape<D> {
             WallShape::Box { axis, .. } => Some(tlsph_contact::RigidBox::frame(normal, *axis)),
             _ => None,
         }
+    }
+
+    /// The box of this shape centred at `point` with the wall's `normal`, for particles with
+    /// smoothing lengths, sound speeds and spacings `particles` (empty slices: its geometry
+    /// alone, its `distance` but not its contact), or why there is none: no frame, an edge
+    /// length not finite and > 0, an edge radius not within 0 ≤ ρ ≤ a_k/2; `None` for any
+    /// other shape.
+    pub fn rigid_box(
+        &self,
+        point: Vector<D>,
+        normal: Vector<D>,
+        (h, c0, dx): (&[f64], &[f64], &[f64]),
+    ) -> Option<Result<tlsph_contact::RigidBox<D>, String>> {
+        let WallShape::Box {
+            size, edge_radius, ..
+        } = *self
+        else {
+            return None;
+        };
+        let frame = match self.box_frame(normal)? {
+            Ok(frame) => frame,
+            Err(why) => return Some(Err(why)),
+        };
+        if !size.iter().all(|a| a.is_finite() && *a > 0.0) {
+            return Some(Err(format!(
+                "a box's edge lengths must be finite and > 0, got {:?}",
+                size.as_slice()
+            )));
+        }
+        let half_shortest = 0.5 * size.min();
+        if !(edge_radius >= 0.0 && edge_radius <= half_shortest) {
+            return Some(Err(format!(
+                "a box's edge radius must be ≥ 0 and at most half its shortest edge, {half_shortest:e}, got {edge_radius}"
+            )));
+        }
+        let block = tlsph_contact::RigidBox::new(point, frame, size, h, c0, dx);
+        Some(Ok(block.with_edge_radius(edge_radius)))
     }
 
     /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its

@@ -2089,15 +2089,12 @@ fn build_effects<const D: usize>(
                     }
                 }
             }
-            WallShape::Box { size, axis } => {
-                let frame = RigidBox::frame(normal, axis).map_err(wall_error)?;
-                if !size.iter().all(|a| a.is_finite() && *a > 0.0) {
-                    return Err(wall_error(format!(
-                        "a box's edge lengths must be finite and > 0, got {:?}",
-                        size.as_slice()
-                    )));
-                }
-                let block = RigidBox::new(point, frame, size, &h, &c0, &dx);
+            WallShape::Box { .. } => {
+                let block: RigidBox<D> = wall
+                    .shape
+                    .rigid_box(point, normal, (&h, &c0, &dx))
+                    .unwrap_or_else(|| Err("is not a box".into()))
+                    .map_err(wall_error)?;
                 push_wall(
                     &mut effects,
                     travel,

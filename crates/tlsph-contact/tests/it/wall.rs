@@ -450,6 +450,64 @@ fn a_box_pushes_off_its_faces_round_its_edges_and_corners_and_out_of_its_inside(
 }
 
 #[test]
+fn a_box_with_rounded_edges_is_the_sharp_box_over_its_faces_and_a_cylinder_round_its_edges() {
+    // The box of edges 4 × 2 × 6 about the origin on the coordinate axes, its edges rounded
+    // to ρ = 0.4, particle contact radius ½.
+    let identity = tlsph_math::Tensor::<3>::identity();
+    let size = Vector::<3>::new(4.0, 2.0, 6.0);
+    let sharp = RigidBox::<3>::new(Vector::<3>::zeros(), identity, size, &[1.2], &[3.0], &[1.0]);
+    let rounded = sharp.clone().with_edge_radius(0.4);
+    let check = |x: Vector<3>, delta: f64, n: Vector<3>| {
+        assert_contact(&rounded, |y| rounded.distance(y).0, x, (delta, n))
+    };
+    // Over a face, away from its rounded rim (more than ρ in from the edges): the sharp box
+    // (to round-off: the depth is measured from the inner box, less ρ).
+    for x in [
+        Vector::<3>::new(0.3, 0.2, 3.2),
+        Vector::<3>::new(1.5, -0.5, -3.4),
+        Vector::<3>::new(2.1, 0.5, 2.5),
+    ] {
+        let ((d, n), (d_sharp, n_sharp)) = (rounded.contact(0, x), sharp.contact(0, x));
+        assert_relative_eq!(d, d_sharp, epsilon = 1e-14);
+        assert_eq!(n, n_sharp);
+    }
+    // Round an edge (x = 2, z = 3): a cylinder of radius ρ about the line x = 1.6, z = 2.6.
+    let off = Vector::<3>::new(0.5, 0.0, 0.3);
+    check(
+        Vector::<3>::new(1.6, 0.2, 2.6) + off,
+        0.9 - off.norm(),
+        off / off.norm(),
+    );
+    // Round a corner: a ball of radius ρ about (1.6, 0.6, 2.6); the sharp box's corner
+    // (2, 1, 3) itself is 0.4 (√3 − 1) clear of the rounded surface.
+    let off = Vector::<3>::new(0.3, 0.2, 0.4);
+    check(
+        Vector::<3>::new(1.6, 0.6, 2.6) + off,
+        0.9 - off.norm(),
+        off / off.norm(),
+    );
+    let corner = Vector::<3>::new(2.0, 1.0, 3.0);
+    assert_relative_eq!(
+        rounded.distance(corner).0,
+        0.4 * (3f64.sqrt() - 1.0),
+        epsilon = 1e-14
+    );
+    assert_eq!(sharp.distance(corner).0, 0.0);
+    // Inside: out through the nearest face, at the same depth as the sharp box.
+    check(Vector::<3>::new(0.5, 0.2, 2.6), 0.9, Vector::<3>::z());
+    assert_push_is_energy_gradient(
+        &rounded,
+        &[
+            (2.0, 0.3, 3.1),
+            (2.15, 0.9, 2.9),
+            (1.8, -1.1, -3.05),
+            (0.5, 0.2, 2.6),
+        ]
+        .map(|(x, y, z)| Vector::<3>::new(x, y, z)),
+    );
+}
+
+#[test]
 fn a_box_frame_is_right_handed_about_its_normal_and_refuses_a_slanted_axis() {
     // 2D: the normal y gives the coordinate axes, and e_0 is the normal turned clockwise.
     let frame = RigidBox::<2>::frame(Vector::<2>::new(0.0, 2.0), Vector::<2>::zeros()).unwrap();

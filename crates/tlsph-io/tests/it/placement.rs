@@ -616,6 +616,7 @@ fn a_box_wall_is_read_placed_and_checked() {
         WallShape::Box {
             size: tlsph_math::Vector::<3>::new(6.0e-3, 6.0e-3, 4.0e-3),
             axis: tlsph_math::Vector::<3>::x(),
+            edge_radius: 0.0,
         }
     );
     assert_eq!(wall.normal, tlsph_math::Vector::<3>::z());
@@ -703,6 +704,50 @@ fn a_box_wall_is_read_placed_and_checked() {
         "none of its faces is parallel",
         "normal = [0.0, 0.0, 1.0]",
     );
+    // Rounded to 1 mm it reaches only 2√2 + 1 = 3.83 mm: clear at x = 4 mm.
+    let rounded_askew = askew.replace(size_line, &format!("{size_line}\nedge_radius = 1.0e-3"));
+    parse_scene(&rounded_askew, "rounded-askew.toml").unwrap();
+    // Its edges rounded: a radius up to half the shortest edge, and only on a box.
+    let rounded = die.replace(size_line, &format!("{size_line}\nedge_radius = 1.0e-3"));
+    let scene = parse_scene(&rounded, "rounded.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert!(matches!(
+        model.effects.walls[0].shape,
+        WallShape::Box { edge_radius, .. } if edge_radius == 1.0e-3
+    ));
+    let too_round = die.replace(size_line, &format!("{size_line}\nedge_radius = 2.5e-3"));
+    refused(
+        &too_round,
+        "edge_radius",
+        "at most half",
+        "edge_radius = 2.5e-3",
+    );
+    let round_ball = ball.replace("size = [1.0, 1.0, 1.0]", "edge_radius = 1.0e-3");
+    refused(
+        &round_ball,
+        "edge_radius",
+        "only a box",
+        "edge_radius = 1.0e-3",
+    );
+    // Over the beam's far top edge (x = 20 mm, z = 4 mm), 0.2 mm into the particle at
+    // (19.5, y, 3.5) mm both ways: that particle starts inside the sharp box, but outside the
+    // box rounded to 1 mm (0.13 mm clear of its rounded edge).
+    let over_the_edge = |keys: &str| {
+        die.replace(
+            "point = [0.0, 2.0e-3, 6.0e-3]",
+            "point = [22.3e-3, 2.0e-3, 5.3e-3]",
+        )
+        .replace(size_line, &format!("{size_line}\n{keys}"))
+    };
+    refused(
+        &over_the_edge(""),
+        "point",
+        "starts inside the box",
+        "point = [22.3e-3, 2.0e-3, 5.3e-3]",
+    );
+    parse_scene(&over_the_edge("edge_radius = 1.0e-3"), "rounded-edge.toml").unwrap();
     // A box cannot spin.
     let spun = die.replace(
         size_line,
