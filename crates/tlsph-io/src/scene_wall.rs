@@ -335,7 +335,7 @@ fn wall_shape<const D: usize>(
                 return refuse(
                     r.span(),
                     "edge_radius",
-                    &format!("must be ≥ 0 and at most half the box's shortest edge, {half_shortest:e}, got {radius}"),
+                    &format!("must be a finite number ≥ 0 and at most half the box's shortest edge, {half_shortest:e}, got {radius}"),
                 );
             }
             radius

@@ -724,6 +724,13 @@ fn a_box_wall_is_read_placed_and_checked() {
         "at most half",
         "edge_radius = 2.5e-3",
     );
+    let not_a_number = die.replace(size_line, &format!("{size_line}\nedge_radius = nan"));
+    refused(
+        &not_a_number,
+        "edge_radius",
+        "finite number ≥ 0",
+        "edge_radius = nan",
+    );
     let round_ball = ball.replace("size = [1.0, 1.0, 1.0]", "edge_radius = 1.0e-3");
     refused(
         &round_ball,
