@@ -212,25 +212,11 @@ impl<const D: usize> FlatDisc<D> {
     }
 
     /// Distance s from `x` to the nearest point of the disc and the unit direction from that
-    /// point to `x` (n̂ for a point on the disc itself).
+    /// point to `x` (n̂ for a point on the disc itself): the disc is the solid cylinder of
+    /// length 0 about its normal ([`solid_cylinder_distance`]).
     #[inline]
     pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
-        let offset = x - self.point;
-        let z = offset.dot(&self.normal);
-        let in_plane = offset - self.normal * z;
-        let r_t = in_plane.norm();
-        if r_t <= self.radius {
-            let side = if z < 0.0 { -1.0 } else { 1.0 };
-            (z.abs(), self.normal * side)
-        } else {
-            let away = offset - in_plane * (self.radius / r_t);
-            let s = away.norm();
-            if s > 0.0 {
-                (s, away / s)
-            } else {
-                (0.0, self.normal)
-            }
-        }
+        solid_cylinder_distance(x - self.point, &self.normal, self.radius, 0.0)
     }
 }
 
@@ -418,34 +404,50 @@ impl<const D: usize> FiniteCylinder<D> {
     /// outward normal inside).
     #[inline]
     pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
-        let offset = x - self.point;
-        let along = offset.dot(&self.axis);
-        let radial = offset - self.axis * along;
-        let r = radial.norm();
-        let end = if along < 0.0 { -self.axis } else { self.axis };
-        let radial_unit = if r > 0.0 {
-            radial / r
-        } else {
-            across_axis(&self.axis)
-        };
-        // Beyond the end face (> 0) and beyond the mantle (> 0).
-        let past_end = along.abs() - self.half_length;
-        let past_mantle = r - self.radius;
-        match (past_end > 0.0, past_mantle > 0.0) {
-            (true, true) => {
-                let s = past_end.hypot(past_mantle);
-                (s, (end * past_end + radial_unit * past_mantle) / s)
-            }
-            (true, false) => (past_end, end),
-            (false, true) => (past_mantle, radial_unit),
-            // Inside: out through the nearer face.
-            (false, false) if past_end > past_mantle => (past_end, end),
-            (false, false) => (past_mantle, radial_unit),
-        }
+        solid_cylinder_distance(x - self.point, &self.axis, self.radius, self.half_length)
     }
 }
 
 wall_by_distance!(FiniteCylinder);
+
+/// Signed distance s from the point at `offset` from a solid cylinder's centre to its surface
+/// (negative inside), and the unit outward direction from the nearest surface point towards
+/// the point (the nearest face's outward normal inside): the cylinder of radius R about the
+/// unit `axis`, of length 2 `half_length`. Of length 0 it is a flat disc (a segment in 2D)
+/// with a rounded rim, whose distance is never negative. Beside the mantle the push is
+/// radial, in front of an end face along ±axis, past a rim away from its nearest point.
+#[inline]
+fn solid_cylinder_distance<const D: usize>(
+    offset: Vector<D>,
+    axis: &Vector<D>,
+    radius: f64,
+    half_length: f64,
+) -> (f64, Vector<D>) {
+    let along = offset.dot(axis);
+    let radial = offset - axis * along;
+    let r = radial.norm();
+    let end = if along < 0.0 { -axis } else { *axis };
+    let radial_unit = if r > 0.0 {
+        radial / r
+    } else {
+        across_axis(axis)
+    };
+    // Beyond the end face (> 0) and beyond the mantle (> 0).
+    let past_end = along.abs() - half_length;
+    let past_mantle = r - radius;
+    match (past_end > 0.0, past_mantle > 0.0) {
+        (true, true) => {
+            let s = past_end.hypot(past_mantle);
+            (s, (end * past_end + radial_unit * past_mantle) / s)
+        }
+        (true, false) => (past_end, end),
+        (false, true) => (past_mantle, radial_unit),
+        // Inside (or on a disc's rim): out through the nearer face, the end face on a tie,
+        // so that a disc's face reaches to its rim.
+        (false, false) if past_end >= past_mantle => (past_end, end),
+        (false, false) => (past_mantle, radial_unit),
+    }
+}
 
 /// A rigid box (ours, not in the theses): the rectangle (2D) or rectangular block (3D) of
 /// edge lengths a_k centred at `centre`, its edges along the orthonormal frame e_k, e.g. a
