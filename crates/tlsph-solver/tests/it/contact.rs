@@ -251,11 +251,7 @@ fn contact_conserves_linear_momentum_to_round_off() {
 #[test]
 fn contact_results_do_not_depend_on_the_thread_count() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        super::on_threads(threads, || {
             let mut sim = Simulation::new(oblique_blocks(
                 Formulation::TotalLagrangianCorrected,
                 0.5,

@@ -440,11 +440,7 @@ fn pulled_bar(
     threads: usize,
     yield_stress: Option<f64>,
 ) -> (Vec<f64>, Vec<tlsph_math::Tensor3>, usize) {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    super::on_threads(threads, || {
         let dx = 1.0;
         let positions = lattice([30, 8], dx);
         let n = positions.len();

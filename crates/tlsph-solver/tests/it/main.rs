@@ -352,12 +352,17 @@ fn linear_momentum_is_conserved_exactly() {
     assert!(worst < 1e-13 * scale, "momentum change {worst:e}");
 }
 
-fn run_with_threads(threads: usize, formulation: Formulation) -> (Vec<Vector<2>>, Vec<Tensor3>) {
-    let pool = rayon::ThreadPoolBuilder::new()
+/// Runs `work` on a rayon pool of `threads` threads (the thread-count determinism tests).
+fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .unwrap();
-    pool.install(|| {
+        .unwrap()
+        .install(work)
+}
+
+fn run_with_threads(threads: usize, formulation: Formulation) -> (Vec<Vector<2>>, Vec<Tensor3>) {
+    on_threads(threads, || {
         let dx = 0.02;
         let positions = lattice([40, 30], dx);
         let v = |x: &Vector<2>| Vector::<2>::new(0.05 * x[1].sin(), 0.02 * x[0]);

@@ -245,11 +245,7 @@ fn a_block_bouncing_off_a_fixed_body_books_no_work_on_the_fixed_particles() {
 #[test]
 fn penalty_contact_results_do_not_depend_on_the_thread_count() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        super::on_threads(threads, || {
             let mut sim = Simulation::new(sliding_impact(0.3, 0.05, 0.01, 4.0)).unwrap();
             sim.run(|_, _| {}).unwrap();
             (0..sim.n_particles())

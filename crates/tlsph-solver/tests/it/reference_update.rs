@@ -157,11 +157,7 @@ fn stretched_supports_keep_every_initial_neighbour_and_fixed_ones_lose_some() {
 }
 
 fn free_block_with_threads(threads: usize) -> (Vec<Vector<2>>, Vec<tlsph_math::Tensor3>, u64) {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    super::on_threads(threads, || {
         let mut m = driven_block(Some(1e-4));
         // Free (no prescribed velocities): the motion is no longer affine.
         m.boundaries.clear();

@@ -416,11 +416,7 @@ fn a_spinning_walls_torque_is_bit_identical_for_one_and_two_threads() {
     // the spinning rolls for 0.1 (59 steps, the spin 10 % up): the torques and the
     // displacements of one and of two threads agree bit for bit.
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        super::on_threads(threads, || {
             let mut sim = Simulation::new(rolled_strip([128, 40], 0.005, 0.01, 1.0, 0.1)).unwrap();
             let mut torques = Vec::new();
             sim.run(|s, _| {
