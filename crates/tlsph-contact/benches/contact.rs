@@ -3,7 +3,9 @@
 //! (no rebuild), a full rebuild, and one gather of the potential law over all candidates.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use tlsph_contact::{ContactCandidates, KernelKind, PotentialLaw, Vector, SKIN_FRACTION};
+use tlsph_contact::{
+    CandidateOffer, ContactCandidates, KernelKind, PotentialLaw, Vector, SKIN_FRACTION,
+};
 
 fn blocks(n_side: usize, spacing: f64) -> (Vec<Vector<3>>, Vec<u32>) {
     let mut points = Vec::with_capacity(2 * n_side.pow(3));
@@ -25,7 +27,7 @@ fn bench_contact(c: &mut Criterion) {
     let dx = 1e-3;
     let (points, body) = blocks(30, dx);
     let displacements = vec![Vector::<3>::zeros(); points.len()];
-    let cross = |_: usize, a: u32, _: usize, b: u32, _: u32| a != b;
+    let cross = |pair: CandidateOffer| pair.across_bodies();
     let law = PotentialLaw::new(
         KernelKind::CubicSpline.build(3, 1.2 * dx).unwrap(),
         dx,

@@ -54,7 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let mut candidates =
         ContactCandidates::new(&body, |_| true, potential.d0(), SKIN_FRACTION * dx);
-    candidates.refresh(&positions, &displacements, |_, a, _, b, _| a != b);
+    candidates.refresh(&positions, &displacements, |pair| pair.across_bodies());
     let x = candidates.positions();
     let mut force = vec![Vector::<2>::zeros(); candidates.len()];
     let mut stiffness = vec![0.0; candidates.len()];

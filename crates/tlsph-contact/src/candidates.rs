@@ -26,6 +26,35 @@ pub struct ImagePartner {
     pub mask: u32,
 }
 
+/// A pair offered to the `accepts` test of [`ContactCandidates::refresh`] at a rebuild:
+/// participant `j` (for `mask` 0) or its mirror image across the planes of `mask` lies within
+/// the search radius of participant `k`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CandidateOffer {
+    /// Participant index of the particle searched around.
+    pub k: usize,
+    /// Its particle index.
+    pub particle_k: usize,
+    /// Its body.
+    pub body_k: u32,
+    /// Participant index of the partner offered.
+    pub j: usize,
+    /// Its particle index.
+    pub particle_j: usize,
+    /// Its body.
+    pub body_j: u32,
+    /// Planes the partner is seen across (0: the partner itself).
+    pub mask: u32,
+}
+
+impl CandidateOffer {
+    /// Whether the two particles belong to different bodies.
+    #[inline]
+    pub fn across_bodies(&self) -> bool {
+        self.body_k != self.body_j
+    }
+}
+
 /// Participants of a contact and their candidate partners (CSR, participant indices).
 ///
 /// A participant is a particle whose body takes part; participants are numbered in ascending
@@ -166,15 +195,13 @@ impl<const D: usize> ContactCandidates<D> {
 
     /// Reads the participants' positions x = X + u (`positions0` + `displacements`, one entry
     /// per particle) and rebuilds the candidate lists if any participant has moved more than
-    /// half the skin since the last build (a NaN position counts as moved).
-    /// `accepts(k, body_k, j, body_j, mask)` decides whether participant `j` within the
-    /// search radius is a candidate of `k`: `j` itself for `mask` 0, its image across the
-    /// planes of `mask` otherwise.
+    /// half the skin since the last build (a NaN position counts as moved). `accepts` decides whether a [`CandidateOffer`] within the search
+    /// radius is a candidate.
     pub fn refresh(
         &mut self,
         positions0: &[Vector<D>],
         displacements: &[Vector<D>],
-        accepts: impl Fn(usize, u32, usize, u32, u32) -> bool,
+        accepts: impl Fn(CandidateOffer) -> bool,
     ) {
         let parts = &self.participants;
         self.positions
@@ -203,7 +230,7 @@ impl<const D: usize> ContactCandidates<D> {
     /// Every accepted participant within the search radius, ascending, and every accepted
     /// image within it. Allocates only the cell grid (and the lists if they grow). Non-finite
     /// positions give no candidates (the caller reports the non-finite state).
-    fn rebuild(&mut self, accepts: impl Fn(usize, u32, usize, u32, u32) -> bool) {
+    fn rebuild(&mut self, accepts: impl Fn(CandidateOffer) -> bool) {
         self.offsets.clear();
         self.candidates.clear();
         self.offsets.push(0);
@@ -218,10 +245,17 @@ impl<const D: usize> ContactCandidates<D> {
             let (r, r2) = (self.radius, self.radius * self.radius);
             for (k, x) in self.positions.iter().enumerate() {
                 let start = self.candidates.len();
-                let bk = self.body[k];
+                let offer = |j: u32, mask: u32| CandidateOffer {
+                    k,
+                    particle_k: self.participants[k] as usize,
+                    body_k: self.body[k],
+                    j: j as usize,
+                    particle_j: self.participants[j as usize] as usize,
+                    body_j: self.body[j as usize],
+                    mask,
+                };
                 grid.for_each_candidate_with_position(x, |j, xj| {
-                    let bj = self.body[j as usize];
-                    if accepts(k, bk, j as usize, bj, 0) && (xj - x).norm_squared() < r2 {
+                    if (xj - x).norm_squared() < r2 && accepts(offer(j, 0)) {
                         self.candidates.push(j);
                     }
                 });
@@ -239,8 +273,7 @@ impl<const D: usize> ContactCandidates<D> {
                     }
                     let y = self.mirrors.point(x, mask);
                     grid.for_each_candidate_with_position(&y, |j, xj| {
-                        let bj = self.body[j as usize];
-                        if accepts(k, bk, j as usize, bj, mask) && (xj - y).norm_squared() < r2 {
+                        if (xj - y).norm_squared() < r2 && accepts(offer(j, mask)) {
                             self.images.push(ImagePartner { partner: j, mask });
                         }
                     });

@@ -36,7 +36,7 @@
 //! let positions = [Vector::<2>::new(0.0, 0.0), Vector::<2>::new(0.8, 0.0)];
 //! let displacements = [Vector::<2>::zeros(); 2];
 //! let mut list = ContactCandidates::new(&[0, 1], |_| true, law.d0(), SKIN_FRACTION);
-//! list.refresh(&positions, &displacements, |_, a, _, b, _| a != b);
+//! list.refresh(&positions, &displacements, |pair| pair.across_bodies());
 //! assert_eq!(list.of(0), &[1]);
 //! let state = law.evaluate(0.8);
 //! assert!(state.force > 0.0 && state.potential > 0.0);
@@ -50,7 +50,7 @@ mod penalty;
 mod potential;
 mod wall;
 
-pub use candidates::{ContactCandidates, ImagePartner, PARTICIPANTS_PER_TASK};
+pub use candidates::{CandidateOffer, ContactCandidates, ImagePartner, PARTICIPANTS_PER_TASK};
 pub use penalty::{is_surface, OutwardNormal, PenaltyLaw, SURFACE_FRACTION};
 pub use potential::{PotentialLaw, PotentialPairState};
 pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};

@@ -921,6 +921,29 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 "cannot be combined with [xsph] yet".into(),
             ));
         }
+        let self_paired = |pairs: &Option<Vec<(usize, usize)>>| {
+            pairs.iter().flatten().find(|(a, b)| a == b).map(|p| p.0)
+        };
+        let self_contact = effects
+            .contact
+            .as_ref()
+            .and_then(|c| self_paired(&c.pairs))
+            .or_else(|| {
+                effects
+                    .penalty_contact
+                    .as_ref()
+                    .and_then(|c| self_paired(&c.pairs))
+            });
+        if let Some(b) = self_contact {
+            return Err(ctx.error(
+                &span,
+                "reference_update",
+                format!(
+                    "cannot be combined with the self-contact of body `{}`: a new reference bonds every pair of particles within the kernel support, so surfaces that self-contact holds together would be welded",
+                    bodies[b].name
+                ),
+            ));
+        }
         if let Some(b) = bodies
             .iter()
             .find(|b| materials[b.material].model.has_damage())
@@ -997,8 +1020,7 @@ enum Contact {
 /// default 4) or `law = "penalty"` (§12.1: stiffness factor > 0 and range > 0, default 1,
 /// friction μ ≥ 0, default 0, static friction μ_s ≥ μ, default μ, and its decay d_c ≥ 0); the
 /// keys of the other law are errors. Optional body pairs by
-/// name (default: every pair of different bodies; a body paired with itself is self-contact,
-/// potential law only). With the updated-Lagrangian formulation bodies of the same kernel
+/// name (default: every pair of different bodies; a body paired with itself is self-contact). With the updated-Lagrangian formulation bodies of the same kernel
 /// group, and every body with itself, already interact through the kernel, so naming such a
 /// pair is an error (and "all pairs" leaves them out).
 fn build_contact<const D: usize>(
@@ -1122,11 +1144,6 @@ fn build_contact<const D: usize>(
                     let missing = if find(a).is_none() { a } else { b };
                     return err(format!("no body named `{missing}`"));
                 };
-                if penalty && ia == ib {
-                    return err(format!(
-                        "body `{a}` is paired with itself: the penalty law acts only between particle types (bodies); self-contact needs law = \"potential\""
-                    ));
-                }
                 if updated_lagrangian && ia == ib {
                     return err(format!(
                         "self-contact of body `{a}` needs a total-Lagrangian formulation: with formulation = \"updated-lagrangian\" a body already interacts with itself through the kernel"

@@ -964,7 +964,9 @@ pub struct PenaltyContactDescription {
     /// frictionless.
     pub friction: FrictionCoefficients,
     /// Body pairs (indices into `Model::bodies`) in contact; `None` = every pair of different
-    /// bodies (in the updated-Lagrangian formulation minus those of one kernel group).
+    /// bodies (in the updated-Lagrangian formulation minus those of one kernel group). A body
+    /// paired with itself is self-contact between its particles that are not reference kernel
+    /// neighbours (total-Lagrangian formulations).
     pub pairs: Option<Vec<(usize, usize)>>,
 }
 

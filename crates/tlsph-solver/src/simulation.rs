@@ -2423,10 +2423,11 @@ fn push_wall<const D: usize, G: WallGeometry<D> + Clone + 'static>(
 
 /// Fuller's particle-type penalty contact (numerics.md §12.1) for the declared body pairs (or
 /// every pair of different bodies): k_c = s E* d0^{d−1} with E* the smaller Young's modulus,
-/// R = range · d0, kinetic and static friction coefficients. A body cannot be
-/// paired with itself (a particle type never contacts itself; use the potential law's
-/// self-contact). A body whose every particle has every velocity component prescribed is
-/// driven: its surface is the master surface of its pairs.
+/// R = range · d0, kinetic and static friction coefficients. A body paired with itself gets
+/// self-contact between its particles that are not kernel neighbours in the reference
+/// configuration (total-Lagrangian formulations; `contact_pairs` refuses it with
+/// `"updated-lagrangian"`). A body whose every particle has every velocity component
+/// prescribed is driven: its surface is the master surface of its pairs.
 fn build_penalty_contact<const D: usize>(
     model: &Model<D>,
     contact: &crate::model::PenaltyContactDescription,
@@ -2457,15 +2458,6 @@ fn build_penalty_contact<const D: usize>(
     )?;
     let mut laws = vec![None; nb * nb];
     for (a, b) in pairs {
-        if a == b {
-            return fail(
-                "penalty_contact.pairs",
-                format!(
-                    "body `{}` is paired with itself: the particle-type contact acts only between bodies (self-contact needs the potential law)",
-                    bodies[a].name
-                ),
-            );
-        }
         let youngs = |info: &BodyInfo| model.materials[info.material].model.youngs_modulus();
         let law = PenaltyLaw::new::<D>(
             contact.stiffness,
@@ -2500,8 +2492,9 @@ fn build_penalty_contact<const D: usize>(
 /// updated-Lagrangian formulation with a message saying why.
 /// A reference update needs a total-Lagrangian formulation, the Jaumann-rate stress update
 /// (the Green–Lagrange path needs F relative to the initial configuration) and no damage or
-/// failure model and no XSPH (their state is tied to the initial bonds); the threshold must be
-/// a positive strain.
+/// failure model and no XSPH (their state is tied to the initial bonds), and no self-contact
+/// (the new reference bonds every pair within the kernel support, so surfaces that
+/// self-contact holds together would be welded); the threshold must be a positive strain.
 fn check_reference_update<const D: usize>(
     model: &Model<D>,
     update: crate::model::ReferenceUpdate,
@@ -2520,6 +2513,24 @@ fn check_reference_update<const D: usize>(
         Some("it cannot be combined with a damage or failure model yet (failed particles are removed from the initial bonds)".into())
     } else if model.effects.xsph.is_some() {
         Some("it cannot be combined with XSPH yet".into())
+    } else if let Some((a, _)) = model
+        .effects
+        .contact
+        .iter()
+        .flat_map(|c| c.pairs.iter().flatten())
+        .chain(
+            model
+                .effects
+                .penalty_contact
+                .iter()
+                .flat_map(|c| c.pairs.iter().flatten()),
+        )
+        .find(|(a, b)| a == b)
+    {
+        Some(format!(
+            "it cannot be combined with self-contact (body `{}`): the new reference bonds every pair of particles within the kernel support, so surfaces that self-contact holds together would be welded",
+            model.bodies.get(*a).map_or("?", |b| b.name.as_str())
+        ))
     } else {
         None
     };

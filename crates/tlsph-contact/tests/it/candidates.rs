@@ -2,7 +2,7 @@
 //! deterministic sums and time-step vote across thread counts.
 
 use rayon::ThreadPoolBuilder;
-use tlsph_contact::{ContactCandidates, ImagePartner, PlaneReflections, Vector};
+use tlsph_contact::{CandidateOffer, ContactCandidates, ImagePartner, PlaneReflections, Vector};
 
 /// Deterministic points: two 2D blocks of `side`² jittered particles (bodies 0 and 1) facing
 /// each other across a gap, and a third body (2) that takes no part.
@@ -34,8 +34,8 @@ fn scene(side: usize) -> (Vec<Vector<2>>, Vec<u32>) {
     (points, body)
 }
 
-fn cross_body(_: usize, a: u32, _: usize, b: u32, _: u32) -> bool {
-    a != b
+fn cross_body(pair: CandidateOffer) -> bool {
+    pair.across_bodies()
 }
 
 #[test]
@@ -80,7 +80,7 @@ fn with_symmetry_planes_the_images_within_reach_are_listed_as_brute_force_finds_
     let mut list =
         ContactCandidates::new(&body, |b| b < 2, reach, skin).with_mirrors(mirrors.clone());
     // Self-images too (the same body), to reach the corner images of the first block.
-    list.refresh(&points, &displacements, |_, _, _, _, _| true);
+    list.refresh(&points, &displacements, |_| true);
     let parts = list.participants();
     let mut per_mask = [0usize; 4];
     for k in 0..list.len() {
@@ -104,7 +104,7 @@ fn with_symmetry_planes_the_images_within_reach_are_listed_as_brute_force_finds_
     );
     // Without planes no image is listed.
     let mut plain = ContactCandidates::new(&body, |b| b < 2, reach, skin);
-    plain.refresh(&points, &displacements, |_, _, _, _, _| true);
+    plain.refresh(&points, &displacements, |_| true);
     assert!((0..plain.len()).all(|k| plain.images_of(k).is_empty()));
     assert_eq!(
         (0..plain.len()).map(|k| plain.of(k)).collect::<Vec<_>>(),

@@ -92,6 +92,32 @@ fn a_body_paired_with_itself_is_self_contact_in_tlsph_only() {
 }
 
 #[test]
+fn both_laws_take_self_contact_but_not_with_a_reference_update() {
+    for law in ["scale = 0.2", "law = \"penalty\"\nfriction = 0.3"] {
+        let text = TWO_BARS.replace(
+            "scale = 0.2\npairs = [[\"flyer\", \"target\"]]",
+            &format!("{law}\npairs = [[\"flyer\", \"target\"], [\"target\", \"target\"]]"),
+        );
+        let scene = parse_scene(&text, "scene.toml").unwrap();
+        let DimensionModel::One(model) = &scene.model else {
+            panic!("1D")
+        };
+        let pairs = match (&model.effects.contact, &model.effects.penalty_contact) {
+            (Some(c), None) => c.pairs.clone(),
+            (None, Some(c)) => c.pairs.clone(),
+            other => panic!("one law expected, got {other:?}"),
+        };
+        assert_eq!(pairs, Some(vec![(0, 1), (1, 1)]), "{law}");
+        // A new reference would bond the surfaces that self-contact holds together.
+        let text = format!("{text}\n[reference_update]\nstrain_threshold = 0.1\n");
+        let e = error_of(&text);
+        assert_eq!(e.field, "reference_update", "{e}");
+        assert!(e.message.contains("self-contact of body `target`"), "{e}");
+        assert_eq!(e.line, Some(line_of(&text, "strain_threshold =")), "{e}");
+    }
+}
+
+#[test]
 fn bad_contact_values_are_named_with_field_and_line() {
     let cases = [
         ("scale = 0.2", "scale = -0.2", "contact.scale"),
@@ -251,15 +277,6 @@ fn bad_penalty_contact_keys_are_named_with_field_and_line() {
             TWO_BARS.replace("scale = 0.2\n", "law = \"coulomb\"\n"),
             "contact.law",
             "law =",
-        ),
-        // A particle type never contacts itself.
-        (
-            penalty_bars("").replace(
-                "pairs = [[\"flyer\", \"target\"]]",
-                "pairs = [[\"flyer\", \"flyer\"]]",
-            ),
-            "contact.pairs",
-            "pairs =",
         ),
     ];
     for (text, field, needle) in cases {

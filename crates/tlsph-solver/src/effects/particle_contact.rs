@@ -103,11 +103,11 @@ impl<const D: usize> ParticleContact<D> {
         // Candidates: a participant of a body in contact; for self-contact, never a reference
         // kernel neighbour (nor I itself), images included (a bond to a ghost).
         self.candidates
-            .refresh(&p.positions0, &p.displacements, |k, bk, j, bj, mask| {
-                law(bk, bj).is_some_and(|law| {
-                    bj != bk || {
-                        let image0 = mirrors.point(&positions0[j], mask);
-                        law.allows_self_pair((image0 - positions0[k]).norm_squared())
+            .refresh(&p.positions0, &p.displacements, |pair| {
+                law(pair.body_k, pair.body_j).is_some_and(|law| {
+                    pair.across_bodies() || {
+                        let image0 = mirrors.point(&positions0[pair.j], pair.mask);
+                        law.allows_self_pair((image0 - positions0[pair.k]).norm_squared())
                     }
                 })
             });

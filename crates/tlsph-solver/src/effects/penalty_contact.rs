@@ -32,6 +32,13 @@
 //! the full model's particle there. The counts and normals of particles near a plane already include the
 //! symmetry ghosts among their neighbours.
 //!
+//! A body paired with itself gets self-contact `[C]`: the same law, friction included, between
+//! its particles that are not kernel neighbours in the reference configuration (not bonded to
+//! the partner, nor to its symmetry ghost), so that a body folding onto itself meets itself
+//! while nothing acts inside the continuum, where a surface particle's zone reaches its own
+//! neighbours. Between two parts of one body that share no bond it is exactly the contact of
+//! two bodies.
+//!
 //! Not built: Fuller's multiple-normal refinement and the corner class (n_I ≤ 0.5 n_full), which
 //! only that refinement uses.
 
@@ -61,6 +68,8 @@ pub struct PenaltyContact<const D: usize> {
     /// Participants, their current positions and candidate partners (searched within the
     /// largest zone reach sqrt(R² + d0²) plus the skin).
     candidates: ContactCandidates<D>,
+    /// Symmetry planes (self-contact's reference-neighbour test of an image partner).
+    mirrors: PlaneReflections<D>,
     /// Per participant: same-type neighbour count, surface flag, unit outward normal (zero for
     /// interior particles).
     count: Vec<usize>,
@@ -81,7 +90,7 @@ pub struct PenaltyContact<const D: usize> {
 
 impl<const D: usize> PenaltyContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
-    /// symmetric, no diagonal); `kernels` per body, `body_of` per real particle, `driven` per
+    /// symmetric; a diagonal entry is self-contact); `kernels` per body, `body_of` per real particle, `driven` per
     /// body (motion entirely prescribed). The resultant reported is the contact force on the
     /// lowest-index body that takes part. With symmetry planes `mirrors` a participant also
     /// meets the images of the participants beyond them, with reflected normals and
@@ -110,7 +119,7 @@ impl<const D: usize> PenaltyContact<D> {
         let friction = active.clone().any(PenaltyLaw::has_friction);
         let candidates =
             ContactCandidates::new(body_of, takes_part, max_zone, SKIN_FRACTION * min_reach)
-                .with_mirrors(mirrors);
+                .with_mirrors(mirrors.clone());
         let n = candidates.len();
         let driven = candidates
             .body()
@@ -124,6 +133,7 @@ impl<const D: usize> PenaltyContact<D> {
             full_count: vec![0; n_bodies],
             driven,
             candidates,
+            mirrors,
             count: vec![0; n],
             surface: vec![false; n],
             normal: vec![Vector::zeros(); n],
@@ -182,17 +192,24 @@ impl<const D: usize> PenaltyContact<D> {
     fn prepare(&mut self, at: &Configuration<'_, D>) {
         let p = at.particles;
         let position = |j: usize| p.positions0[j] + p.displacements[j];
-        let (laws, n_bodies) = (&self.laws, self.n_bodies);
+        let (laws, n_bodies, kernels) = (&self.laws, self.n_bodies, &self.kernels);
+        let mirrors = &self.mirrors;
+        // A participant of another body in contact, or of the same body (self-contact) unless
+        // the two are kernel neighbours in the reference configuration, bonded to the partner
+        // or to its symmetry ghost: |X_I − M(X_K)| < 2h, the rule the bonds are built by. So
+        // self-contact never acts inside the continuum. (A reference update, which would move
+        // X and re-bond, is refused with self-contact at setup.)
         self.candidates
-            .refresh(&p.positions0, &p.displacements, |_, bk, _, bj, _| {
-                laws[bk as usize * n_bodies + bj as usize].is_some()
+            .refresh(&p.positions0, &p.displacements, |pair| {
+                laws[pair.body_k as usize * n_bodies + pair.body_j as usize].is_some()
+                    && (pair.across_bodies() || {
+                        let support = kernels[pair.body_k as usize].support_radius();
+                        let image0 = mirrors.point(&p.positions0[pair.particle_j], pair.mask);
+                        (image0 - p.positions0[pair.particle_k]).norm_squared() >= support * support
+                    })
             });
         // 1. Same-type neighbour counts.
-        let (kernels, body, parts) = (
-            &self.kernels,
-            self.candidates.body(),
-            self.candidates.participants(),
-        );
+        let (body, parts) = (self.candidates.body(), self.candidates.participants());
         let support = |k: usize| kernels[body[k] as usize].support_radius();
         self.count
             .par_iter_mut()

@@ -3,7 +3,8 @@
 //! contact of the particles next to a plane must see the mirror images of the other body's
 //! particles beyond it, so the reduced model moves like the full one, for the potential law
 //! (total- and updated-Lagrangian) and the penalty law with friction; and a body in
-//! self-contact strikes its own image as the full model's two halves strike each other.
+//! self-contact (either law) strikes its own image as the full model's two halves strike each
+//! other.
 
 use super::contact::{body, config, materials};
 use tlsph_math::Vector;
@@ -278,9 +279,35 @@ fn a_quarter_model_in_contact_at_its_planes_moves_like_the_full_model() {
 #[test]
 fn a_body_in_self_contact_meets_its_own_mirror_image_as_the_full_model_meets_its_other_half() {
     // Full model: one body of two blocks, 4Δx apart across x = 0 (no reference bond joins
-    // them), closing at ±0.03 in self-contact. Half model: the right block alone with the
-    // plane x = 0, which it strikes as its own image (the image pair's reference distance is
-    // beyond the support, so self-contact accepts it).
+    // them), closing at ±0.03 in self-contact, of either law. Half model: the right block
+    // alone with the plane x = 0, which it strikes as its own image (the image pair's
+    // reference distance is beyond the support, so self-contact accepts it). (Friction, declared
+    // for the penalty law, has nothing to do: the two halves of a mirror-symmetric motion do
+    // not slide along the plane.)
+    let potential = EffectsDescription {
+        contact: Some(ContactDescription {
+            scale: 0.5,
+            exponent: 4.0,
+            pairs: Some(vec![(0, 0)]),
+        }),
+        ..Default::default()
+    };
+    let penalty = EffectsDescription {
+        penalty_contact: Some(PenaltyContactDescription {
+            stiffness: 1.0,
+            range: 1.0,
+            friction: FrictionCoefficients::single(0.3),
+            pairs: Some(vec![(0, 0)]),
+        }),
+        ..Default::default()
+    };
+    for effects in [potential, penalty] {
+        self_contact_at_the_plane(effects);
+    }
+}
+
+/// The half and full models of the test above, with the contact of `effects`.
+fn self_contact_at_the_plane(effects: EffectsDescription<2>) {
     let block: Vec<Vector<2>> = super::lattice([8, 6], DX)
         .iter()
         .map(|x| x + Vector::<2>::new(1.5 * DX, 0.0))
@@ -307,14 +334,7 @@ fn a_body_in_self_contact_meets_its_own_mirror_image_as_the_full_model_meets_its
         materials: materials(),
         bodies: vec![both],
         boundaries: vec![],
-        effects: EffectsDescription {
-            contact: Some(ContactDescription {
-                scale: 0.5,
-                exponent: 4.0,
-                pairs: Some(vec![(0, 0)]),
-            }),
-            ..Default::default()
-        },
+        effects,
     };
     let mut half = full.clone();
     half.bodies[0].positions.truncate(block.len());

@@ -11,6 +11,7 @@ mod finite_wall;
 mod long_runs;
 mod moving_wall;
 mod penalty_contact;
+mod penalty_self_contact;
 mod plasticity;
 mod prescribed;
 mod reference_update;

@@ -3,11 +3,13 @@
 
 use super::plasticity::copper;
 use super::{lattice, model, Setup};
+use tlsph_contact::FrictionCoefficients;
 use tlsph_materials::LinearElastic;
 use tlsph_math::{Tensor, Vector};
 use tlsph_solver::{
-    BoundaryDescription, Formulation, MaterialModel, Model, ParticleField, ReferenceSupport,
-    ReferenceUpdate, SetupError, Simulation, StressUpdate,
+    BoundaryDescription, ContactDescription, Formulation, MaterialModel, Model, ParticleField,
+    PenaltyContactDescription, ReferenceSupport, ReferenceUpdate, SetupError, Simulation,
+    StressUpdate,
 };
 
 /// A plastic plane-strain block of 10 × 8 particles whose every particle is driven with
@@ -202,4 +204,26 @@ fn a_reference_update_is_rejected_where_it_cannot_be_right() {
     let (field, message) = field_of(elastic_green_lagrange);
     assert_eq!(field, "reference_update");
     assert!(message.contains("jaumann-rate"), "{message}");
+    // A new reference bonds every pair within the kernel support: surfaces held together by
+    // self-contact, of either law, would be welded.
+    for penalty in [false, true] {
+        let mut self_contact = driven_block(Some(0.1));
+        if penalty {
+            self_contact.effects.penalty_contact = Some(PenaltyContactDescription {
+                stiffness: 1.0,
+                range: 1.0,
+                friction: FrictionCoefficients::single(0.2),
+                pairs: Some(vec![(0, 0)]),
+            });
+        } else {
+            self_contact.effects.contact = Some(ContactDescription {
+                scale: 0.2,
+                exponent: 4.0,
+                pairs: Some(vec![(0, 0)]),
+            });
+        }
+        let (field, message) = field_of(self_contact);
+        assert_eq!(field, "reference_update", "penalty {penalty}");
+        assert!(message.contains("self-contact"), "{message}");
+    }
 }
