@@ -213,7 +213,7 @@ impl<const D: usize> FlatDisc<D> {
 
     /// Distance s from `x` to the nearest point of the disc and the unit direction from that
     /// point to `x` (n̂ for a point on the disc itself): the disc is the solid cylinder of
-    /// length 0 about its normal ([`solid_cylinder_distance`]).
+    /// length 0 about its normal (`solid_cylinder_distance`).
     #[inline]
     pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
         solid_cylinder_distance(x - self.point, &self.normal, self.radius, 0.0)
