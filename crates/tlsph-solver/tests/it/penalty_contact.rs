@@ -89,18 +89,29 @@ fn penalty_contact_bars_rebound_with_the_elastic_impact_stress_rho_c_v() {
     }
 }
 
-/// A 2D block (dx 0.05, 8 × 6) falling at speed `v_n` onto a wider, heavier block at rest
-/// while sliding along it at `v_t`; the faces start 0.01 dx beyond the penalty range.
-fn sliding_impact(friction: f64, v_t: f64, v_n: f64, end_time: f64) -> Model<2> {
-    let dx = 0.05;
-    let base: Vec<Vector<2>> = lattice([30, 6], dx)
+/// Spacing of the slider and base of [`slider_and_base`].
+pub(super) const SLIDER_DX: f64 = 0.05;
+
+/// A slider of 8 × 6 particles above a base of 30 × 6 (spacing [`SLIDER_DX`]), their facing
+/// rows `gap` + 1 spacings apart.
+pub(super) fn slider_and_base(gap: f64) -> (Vec<Vector<2>>, Vec<Vector<2>>) {
+    let dx = SLIDER_DX;
+    let base = lattice([30, 6], dx)
         .iter()
         .map(|x| x - Vector::<2>::new(0.75, 0.3))
         .collect();
-    let slider: Vec<Vector<2>> = lattice([8, 6], dx)
+    let slider = lattice([8, 6], dx)
         .iter()
-        .map(|x| x + Vector::<2>::new(-0.2, 0.01 * dx))
+        .map(|x| x + Vector::<2>::new(-0.2, gap * dx))
         .collect();
+    (slider, base)
+}
+
+/// A 2D block (dx 0.05, 8 × 6) falling at speed `v_n` onto a wider, heavier block at rest
+/// while sliding along it at `v_t`; the faces start 0.01 dx beyond the penalty range.
+fn sliding_impact(friction: f64, v_t: f64, v_n: f64, end_time: f64) -> Model<2> {
+    let dx = SLIDER_DX;
+    let (slider, base) = slider_and_base(0.01);
     Model {
         config: config(Formulation::TotalLagrangianCorrected, end_time),
         materials: materials(),

@@ -6,7 +6,7 @@
 //! body rebound instead of passing through each other, with energy and momentum closed.
 
 use super::contact::{body, config, materials};
-use super::lattice;
+use super::penalty_contact::{slider_and_base, SLIDER_DX};
 use tlsph_contact::FrictionCoefficients;
 use tlsph_math::Vector;
 use tlsph_solver::{
@@ -46,15 +46,8 @@ fn contact_energy(sim: &Simulation<2>) -> f64 {
 /// blocks share no bond. `one_body`: a single body of both blocks paired with itself;
 /// otherwise two bodies in contact.
 fn falling_block(one_body: bool) -> Model<2> {
-    let dx = 0.05;
-    let base: Vec<Vector<2>> = lattice([30, 6], dx)
-        .iter()
-        .map(|x| x - Vector::<2>::new(0.75, 0.3))
-        .collect();
-    let slider: Vec<Vector<2>> = lattice([8, 6], dx)
-        .iter()
-        .map(|x| x + Vector::<2>::new(-0.2, 1.6 * dx))
-        .collect();
+    let dx = SLIDER_DX;
+    let (slider, base) = slider_and_base(1.6);
     let (v_slider, v_base) = (Vector::<2>::new(0.05, -0.02), Vector::<2>::zeros());
     let (bodies, pairs) = if one_body {
         let mut whole = body("blocks", 0, slider.clone(), dx, v_slider);
