@@ -195,8 +195,8 @@ impl<const D: usize> ContactCandidates<D> {
 
     /// Reads the participants' positions x = X + u (`positions0` + `displacements`, one entry
     /// per particle) and rebuilds the candidate lists if any participant has moved more than
-    /// half the skin since the last build (a NaN position counts as moved). `accepts` decides whether a [`CandidateOffer`] within the search
-    /// radius is a candidate.
+    /// half the skin since the last build (a NaN position counts as moved). `accepts` decides
+    /// whether a [`CandidateOffer`] within the search radius is a candidate.
     pub fn refresh(
         &mut self,
         positions0: &[Vector<D>],

@@ -1019,10 +1019,11 @@ enum Contact {
 /// `[contact]`: `law = "potential"` (default; numerics.md §12.2: scale a > 0, exponent n ≥ 1,
 /// default 4) or `law = "penalty"` (§12.1: stiffness factor > 0 and range > 0, default 1,
 /// friction μ ≥ 0, default 0, static friction μ_s ≥ μ, default μ, and its decay d_c ≥ 0); the
-/// keys of the other law are errors. Optional body pairs by
-/// name (default: every pair of different bodies; a body paired with itself is self-contact). With the updated-Lagrangian formulation bodies of the same kernel
-/// group, and every body with itself, already interact through the kernel, so naming such a
-/// pair is an error (and "all pairs" leaves them out).
+/// keys of the other law are errors. Optional body pairs by name (default: every pair of
+/// different bodies; a body paired with itself is self-contact, of either law). With the
+/// updated-Lagrangian formulation bodies of the same kernel group, and every body with itself,
+/// already interact through the kernel, so naming such a pair is an error (and "all pairs"
+/// leaves them out).
 fn build_contact<const D: usize>(
     ctx: &Context<'_>,
     table: &Spanned<crate::scene_file::ContactTable>,

@@ -90,8 +90,8 @@ pub struct PenaltyContact<const D: usize> {
 
 impl<const D: usize> PenaltyContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
-    /// symmetric; a diagonal entry is self-contact); `kernels` per body, `body_of` per real particle, `driven` per
-    /// body (motion entirely prescribed). The resultant reported is the contact force on the
+    /// symmetric; a diagonal entry is self-contact); `kernels` per body, `body_of` per real
+    /// particle, `driven` per body (motion entirely prescribed). The resultant reported is the contact force on the
     /// lowest-index body that takes part. With symmetry planes `mirrors` a participant also
     /// meets the images of the participants beyond them, with reflected normals and
     /// velocities.
