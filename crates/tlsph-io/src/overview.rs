@@ -158,8 +158,9 @@ fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
             notes.push(
                 "penalty contact between total-Lagrangian bodies without [hourglass_control]: \
                  a surface pressed hard, or sheared by friction, can zig-zag particle by \
-                 particle and let the other body dig in; declare hourglass control \
-                 (coefficient = 1 held the cases measured in docs/scene-format.md)"
+                 particle and let the other surface dig in (also in self-contact); declare \
+                 hourglass control (coefficient = 1 held the cases measured in \
+                 docs/scene-format.md)"
                     .into(),
             );
         }
