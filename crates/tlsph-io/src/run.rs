@@ -492,13 +492,17 @@ type WallTrack<'a> = (String, Box<dyn Fn(f64) -> tlsph_math::Vector3 + 'a>);
 
 /// Writes the forces `forces` picks from each sample, `<name>_force_x/y/z`, then the
 /// displacement of each of `tracks` at the sample's time, `<name>_displacement_x/y/z`, then
-/// the torques `torques` picks, `<name>_torque`; nothing without forces.
+/// the torques `torques` picks, `<name>_torque`, then the moments `moments` picks,
+/// `<name>_moment_x/y/z`; nothing without forces.
 fn write_forces(
     path: &Path,
     diagnostics: &[Diagnostics],
     forces: impl Fn(&Diagnostics) -> &Vec<(String, tlsph_math::Vector3)>,
     tracks: &[WallTrack<'_>],
-    torques: impl Fn(&Diagnostics) -> &[(String, f64)],
+    (torques, moments): (
+        impl Fn(&Diagnostics) -> &[(String, f64)],
+        impl Fn(&Diagnostics) -> &[(String, tlsph_math::Vector3)],
+    ),
 ) -> Result<(), RunError> {
     let Some(first) = diagnostics.first().filter(|d| !forces(d).is_empty()) else {
         return Ok(());
@@ -511,6 +515,9 @@ fn write_forces(
         header.extend(["x", "y", "z"].map(|c| format!("{n}_displacement_{c}")));
     }
     header.extend(torques(first).iter().map(|(n, _)| format!("{n}_torque")));
+    for (n, _) in moments(first) {
+        header.extend(["x", "y", "z"].map(|c| format!("{n}_moment_{c}")));
+    }
     let rows = diagnostics.iter().map(|d| {
         let mut row = vec![d.time];
         for (_, f) in forces(d) {
@@ -521,6 +528,9 @@ fn write_forces(
             row.extend([u.x, u.y, u.z]);
         }
         row.extend(torques(d).iter().map(|(_, t)| *t));
+        for (_, m) in moments(d) {
+            row.extend([m.x, m.y, m.z]);
+        }
         row
     });
     write_csv(path, &header, rows)
@@ -599,14 +609,14 @@ fn write_run_folder(
         &record.diagnostics,
         |d| &d.effect_forces,
         &tracks,
-        |d| &d.effect_torques,
+        (|d| &d.effect_torques, |d| &d.effect_moments),
     )?;
     write_forces(
         &partial.join("boundaries.csv"),
         &record.diagnostics,
         |d| &d.boundary_forces,
         &[],
-        |_| &[],
+        (|_| &[], |_| &[]),
     )?;
     let momentum_rows = record.diagnostics.iter().map(|d| {
         let (p, l) = (d.linear_momentum, d.angular_momentum);

@@ -160,6 +160,8 @@ pub(crate) struct WallTable {
     pub spin: Option<Spanned<f64>>,
     /// Duration of the spin's smooth start-up \[s\].
     pub spin_ramp_time: Option<Spanned<f64>>,
+    /// Write the moment vector of the wall's force (and of its friction's) about its point.
+    pub report_moment: Option<Spanned<bool>>,
 }
 
 /// `[reference_update]`: replace the TLSPH reference configuration by the current one when

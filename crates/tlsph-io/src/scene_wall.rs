@@ -124,6 +124,17 @@ pub(crate) fn build_wall<const D: usize>(
     };
     let sliding = |a: usize| motion.as_ref().is_some_and(|m| m.velocity[a] != 0.0);
     check_symmetry(ctx, w, &shape, point, unit, sliding, symmetry_planes, &key)?;
+    let report_moment = match &w.report_moment {
+        Some(flag) if D == 1 && *flag.get_ref() => {
+            return Err(ctx.error(
+                &flag.span(),
+                &key("report_moment"),
+                "a 1D wall's force has no moment (every force and lever lies along x)".into(),
+            ))
+        }
+        Some(flag) => *flag.get_ref(),
+        None => false,
+    };
     Ok(WallDescription {
         name,
         point,
@@ -131,6 +142,7 @@ pub(crate) fn build_wall<const D: usize>(
         friction,
         motion,
         shape,
+        report_moment,
     })
 }
 

@@ -30,6 +30,11 @@ pub struct Diagnostics {
     /// points y (its normal force has no moment about that axis): positive while the wall
     /// drives the particles round with it; |ω| times it is the power the spin puts in.
     pub effect_torques: Vec<(String, f64)>,
+    /// Moment vector of the force of each effect that reports one (a wall with
+    /// `report_moment`: `wall_<name>` and `wall_<name>_friction`) about the wall's current
+    /// point, Σ m (y − c) × a over the surface points y where the particles touch, in the last
+    /// step \[N m\], padded to 3D (in 2D only z is non-zero).
+    pub effect_moments: Vec<(String, Vector3)>,
     /// Force of each prescribed-velocity set (`boundary_<name>`) on its particles in the
     /// last step \[N\], padded to 3D: the reaction a grip or clamp exerts, every force on the
     /// held components included (numerics.md §13.2, see `prescribed.rs`).

@@ -666,6 +666,10 @@ pub struct WallDescription<const D: usize> {
     /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc, a ball or a box,
     /// or (3D) a cylinder.
     pub shape: WallShape<D>,
+    /// Report the moment M = Σ (x_I − p(t)) × F_I of the wall's force on the particles (and of
+    /// its friction force, separately) about the wall's current `point` p(t) (opt-in: without
+    /// it nothing is computed).
+    pub report_moment: bool,
 }
 
 /// The shape of a rigid wall (ours, not in the theses; numerics.md §13 `[C]` law on each).

@@ -1591,6 +1591,9 @@ impl<const D: usize> Simulation<D> {
             if let Some(torque) = booked.effect.torque() {
                 d.effect_torques.push((name.clone(), torque));
             }
+            if let Some(moment) = booked.effect.moment() {
+                d.effect_moments.push((name.clone(), moment));
+            }
             d.effect_energies
                 .push((name, booked.energy - booked.pending));
         }
@@ -2021,7 +2024,7 @@ fn build_effects<const D: usize>(
                 Ok(radius)
             }
         };
-        let name = &wall.name;
+        let (name, report_moment) = (&wall.name, wall.report_moment);
         // A moving wall advances at most C_cfl min h per step (RigidWall::with_travel_limit).
         let travel = bodies
             .iter()
@@ -2035,7 +2038,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, plane, motion),
-                    (coefficients, point),
+                    (coefficients, point, report_moment),
                 );
             }
             WallShape::Disc { radius } => {
@@ -2045,7 +2048,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, disc, motion),
-                    (coefficients, point),
+                    (coefficients, point, report_moment),
                 );
             }
             WallShape::Ball { radius } => {
@@ -2055,7 +2058,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, ball, motion),
-                    (coefficients, point),
+                    (coefficients, point, report_moment),
                 );
             }
             WallShape::Cylinder {
@@ -2069,7 +2072,7 @@ fn build_effects<const D: usize>(
                         "a cylinder needs a 3D scene (in 2D a ball is the cylinder in plane strain), got {D}D"
                     )));
                 }
-                let friction = (coefficients, point);
+                let friction = (coefficients, point, report_moment);
                 match length {
                     None => {
                         let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
@@ -2099,7 +2102,7 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, block, motion),
-                    (coefficients, point),
+                    (coefficients, point, report_moment),
                 );
             }
         }
@@ -2409,9 +2412,14 @@ fn push_wall<const D: usize, G: WallGeometry<D> + Clone + 'static>(
     effects: &mut Vec<BookedEffect<D>>,
     (length, particle): (f64, usize),
     wall: RigidWall<D, G>,
-    (coefficients, point): (FrictionCoefficients, Vector<D>),
+    (coefficients, point, report_moment): (FrictionCoefficients, Vector<D>, bool),
 ) {
     let wall = wall.with_travel_limit(length, particle);
+    let wall = if report_moment {
+        wall.with_moment_about(point)
+    } else {
+        wall
+    };
     let friction = coefficients
         .is_frictional()
         .then(|| wall.friction(coefficients, point));

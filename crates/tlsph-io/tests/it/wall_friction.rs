@@ -484,6 +484,23 @@ fn a_floor_run_with_an_amplitude_table_tracks_the_integral_of_its_table() {
     assert!(worst < 1e-3 * e0, "total moved {worst:e}");
 }
 
+/// Runs `SLIDER` with a roll of radius 1 just below the floor's surface, spinning
+/// counter-clockwise with friction 0.5 and the extra `keys`, and returns its `walls.csv`.
+fn slider_on_roll(keys: &str) -> String {
+    let text = SLIDER.replace(
+        "[body_force]",
+        &format!(
+            "[[wall]]\nname = \"roll\"\nshape = \"ball\"\npoint = [0.275, -1.0]\nradius = 1.0\n\
+             friction = 0.5\nspin = 0.05\n{keys}\n[body_force]"
+        ),
+    );
+    let scene = parse_scene(&text, "roll.toml").unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
+    fs::read_to_string(dir.join("walls.csv")).unwrap()
+}
+
 #[test]
 fn a_spinning_walls_torque_is_written_after_the_forces() {
     // The slider also rests on a roll of radius 1 just below the floor's surface, spinning
@@ -493,16 +510,7 @@ fn a_spinning_walls_torque_is_written_after_the_forces() {
     // so over the run Σ T = −R Σ F_x of its friction (lever (0, R)), within 1/cos of the
     // contact's angle: measured 1.0000 (the block's bottom row touches the roll only near its
     // top, within 0.05 rad); bound 1 %.
-    let text = SLIDER.replace(
-        "[body_force]",
-        "[[wall]]\nname = \"roll\"\nshape = \"ball\"\npoint = [0.275, -1.0]\nradius = 1.0\n\
-         friction = 0.5\nspin = 0.05\n\n[body_force]",
-    );
-    let scene = parse_scene(&text, "roll.toml").unwrap();
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("out");
-    run_scene_to_dir(&scene, &dir, &mut |_, _| {}).unwrap();
-    let walls = fs::read_to_string(dir.join("walls.csv")).unwrap();
+    let walls = slider_on_roll("");
     let header: Vec<&str> = walls.lines().next().unwrap().split(',').collect();
     assert_eq!(header.len(), 1 + 4 * 3 + 1, "{header:?}");
     assert_eq!(header[10], "wall_roll_friction_force_x");
@@ -525,4 +533,43 @@ fn a_spinning_walls_torque_is_written_after_the_forces() {
         (torque / lever_force - 1.0).abs() < 0.01,
         "Σ T = {torque:e} against −R Σ F_x = {lever_force:e}"
     );
+}
+
+#[test]
+fn report_moment_writes_a_walls_moment_vectors_after_the_torques() {
+    // The spinning roll of the test above with `report_moment = true`: after its torque come
+    // the moments about its centre, of its normal force (`wall_roll_moment_*`) and of its
+    // friction (`wall_roll_friction_moment_*`). Its normal forces are radial, so their moment
+    // about the centre vanishes to round-off (bound 1e-12 of R times the force); the friction's
+    // moment is along z, and its z part is the torque about the spin axis (z, the roll turning
+    // counter-clockwise), to round-off.
+    let walls = slider_on_roll("report_moment = true\n");
+    let header: Vec<&str> = walls.lines().next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 1 + 4 * 3 + 1 + 2 * 3, "{header:?}");
+    assert_eq!(header[13], "wall_roll_friction_torque");
+    assert_eq!(header[14], "wall_roll_moment_x");
+    assert_eq!(header[19], "wall_roll_friction_moment_z");
+    let mut touched = false;
+    for line in walls.lines().skip(1) {
+        let r: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let (normal_force, friction_force) = (r[7].hypot(r[8]), r[10].hypot(r[11]));
+        touched |= friction_force > 0.0;
+        assert!(
+            r[14].abs() + r[15].abs() + r[16].abs() <= 1e-12 * normal_force,
+            "{line}"
+        );
+        assert!(r[17] == 0.0 && r[18] == 0.0, "{line}");
+        assert!((r[19] - r[13]).abs() <= 1e-12 * friction_force, "{line}");
+    }
+    assert!(touched, "the roll never touched the block");
+    // A 1D wall has no moment to report.
+    let one_d = "[simulation]\ndimension = 1\nformulation = \"total-lagrangian\"\n\
+        kernel = \"cubic-spline\"\nsmoothing_factor = 1.2\ncfl = 0.5\nend_time = 1.0\n\n\
+        [[material]]\nname = \"unit\"\nmodel = \"linear-elastic\"\ndensity = 1.0\n\
+        youngs_modulus = 0.9\npoisson_ratio = 0.2\n\n[[body]]\nname = \"bar\"\nmaterial = \"unit\"\n\
+        spacing = 0.1\nbox = { min = [0.0], max = [1.0] }\n\n[[wall]]\nname = \"end\"\n\
+        point = [0.0]\nnormal = [1.0]\nreport_moment = true\n";
+    let e = error_of(one_d);
+    assert_eq!(e.field, "wall[end].report_moment", "{e}");
+    assert_eq!(e.line, Some(line_of(one_d, "report_moment")), "{e}");
 }

@@ -82,6 +82,13 @@ pub(crate) trait Effect<const D: usize>: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Moment vector M = Σ (y − c) × F of the last step's force about the effect's reference
+    /// point c (a wall with `report_moment`: its current point), padded to 3D \[N m\], if the
+    /// effect reports one.
+    fn moment(&self) -> Option<tlsph_math::Vector3> {
+        None
+    }
+
     /// Sees the accelerations `applied` that this effect's kick gave the particles at t^n
     /// (its own, less the prescribed components the drivers took over), for an effect that
     /// reports more than their resultant (a spinning wall's torque).

@@ -5,7 +5,8 @@
 //! unbounded `RigidCylinder`), so each shape's loop carries nothing of the others.
 //! With a friction coefficient the wall also carries a Coulomb friction effect of its own
 //! ([`WallFriction`]), booked and reported separately; a spinning wall's friction also reports
-//! its torque about the spin axis.
+//! its torque about the spin axis. With `report_moment` both report the full moment vector of
+//! their force about the wall's current point.
 //!
 //! A moving wall ([`WallMotion`]) is the same plane translated by d(t): the penetration of a
 //! particle at x is that of x − d(t) against the plane at rest, and friction acts on the
@@ -47,6 +48,12 @@ pub struct RigidWall<const D: usize, G> {
     /// Moving wall: the longest travel per step, C_cfl min h, and a particle of the body with
     /// that h (see [`Self::with_travel_limit`]).
     travel_limit: Option<(f64, usize)>,
+    /// The moment is reported about the wall's point (its place at t = 0 here, moving with
+    /// the wall); `None`: not reported, nothing computed.
+    moment_point: Option<Vector<D>>,
+    /// The moment of the last step's force \[N m\] and its per-chunk partial sums.
+    moment: Vector3,
+    chunk_moments: Vec<Vector3>,
 }
 
 impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
@@ -63,7 +70,17 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
             last_power: None,
             chunk_sums: Vec::new(),
             travel_limit: None,
+            moment_point: None,
+            moment: Vector3::zeros(),
+            chunk_moments: Vec::new(),
         }
+    }
+
+    /// Reports the moment of the wall's force (and of its friction's) about the wall's point,
+    /// `point` at t = 0, moving with the wall.
+    pub(crate) fn with_moment_about(mut self, point: Vector<D>) -> Self {
+        self.moment_point = Some(point);
+        self
     }
 
     /// A moving wall votes Δt ≤ `length` / |v_w(t^n)|: it advances at most `length`
@@ -98,10 +115,45 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> RigidWall<D, G> {
                 .as_ref()
                 .and_then(|m| m.spin)
                 .map(|omega| omega.normalize()),
-            torque: 0.0,
-            chunk_torques: Vec::new(),
+            report_moment: self.moment_point.is_some(),
+            moment: Vector3::zeros(),
+            chunk_moments: Vec::new(),
         }
     }
+}
+
+/// The moment M = Σ m (y − c) × a of the accelerations `applied` (one per particle) about the
+/// wall's point c (`centre`, at t = 0; the particles are taken into the wall's frame by
+/// `shift`), each force acting at the surface point y where its particle touches the wall
+/// (`tlsph_contact::surface_point`; for the normal force any point of its line of action
+/// gives the same moment, for friction it is the lever the wall exerts it with). Summed in
+/// fixed chunks (thread-count independent).
+fn moment_at_surface<const D: usize, G: WallGeometry<D>>(
+    wall: &G,
+    (shift, centre): (Vector<D>, Vector<D>),
+    ctx: &EffectContext<'_, D>,
+    applied: &[Vector<D>],
+    chunks: &mut Vec<Vector3>,
+) -> Vector3 {
+    let p = ctx.particles;
+    applied
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut moment = Vector3::zeros();
+            for (k, a) in chunk.iter().enumerate() {
+                if a.iter().all(|c| *c == 0.0) {
+                    continue;
+                }
+                let i = c * CHUNK + k;
+                let x = p.positions0[i] + p.displacements[i] - shift;
+                let lever = surface_point(wall, i, x, wall.contact(i, x)) - centre;
+                moment += vector_to_3d(&lever).cross(&vector_to_3d(a)) * p.masses[i];
+            }
+            moment
+        })
+        .collect_into_vec(chunks);
+    chunks.iter().sum()
 }
 
 /// The wall's displacement from its place at t = 0, at time `t` (zero for a fixed wall).
@@ -174,6 +226,25 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for RigidWa
     fn set_resultant(&mut self, force: Vector<D>) {
         self.resultant = force;
     }
+
+    fn moment(&self) -> Option<Vector3> {
+        self.moment_point.map(|_| self.moment)
+    }
+
+    /// The moment of the wall's force about its point, when reported (`moment_at_surface`).
+    fn record_applied(&mut self, ctx: &EffectContext<'_, D>, applied: &[Vector<D>]) {
+        let Some(centre) = self.moment_point else {
+            return;
+        };
+        let shift = wall_shift(&self.motion, ctx.time);
+        self.moment = moment_at_surface(
+            &*self.geometry,
+            (shift, centre),
+            ctx,
+            applied,
+            &mut self.chunk_moments,
+        );
+    }
 }
 
 /// Coulomb friction of a rigid wall (numerics.md §13 `[C]`,
@@ -203,10 +274,13 @@ pub struct WallFriction<const D: usize, G> {
     /// A spinning wall's unit axis ê in the sense of its spin, ω/|ω|; `None` for a wall
     /// without spin (no torque reported).
     spin_axis: Option<Vector3>,
-    /// Spinning wall: the torque of the last step about ê \[N m\].
-    torque: f64,
-    /// Spinning wall: per-chunk partial sums of the torque (reused every step).
-    chunk_torques: Vec<f64>,
+    /// Whether the moment vector is reported (it is computed for a spinning wall too, whose
+    /// torque is its part along ê).
+    report_moment: bool,
+    /// Spinning or reporting wall: the moment of the last step about the wall's point
+    /// \[N m\] and its per-chunk partial sums (reused every step).
+    moment: Vector3,
+    chunk_moments: Vec<Vector3>,
 }
 
 impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFriction<D, G> {
@@ -245,38 +319,31 @@ impl<const D: usize, G: WallGeometry<D> + Clone + 'static> Effect<D> for WallFri
     }
 
     fn torque(&self) -> Option<f64> {
-        self.spin_axis.map(|_| self.torque)
+        self.spin_axis.map(|axis| axis.dot(&self.moment))
     }
 
-    /// A spinning wall's torque on the particles about its axis in the sense of its spin,
-    /// T = Σ m ê·((y − c) × a) with ê = ω/|ω|, each friction force acting at the surface
+    fn moment(&self) -> Option<Vector3> {
+        self.report_moment.then_some(self.moment)
+    }
+
+    /// The friction's moment M = Σ m (y − c) × a about the wall's point (`moment_at_surface`),
+    /// for a spinning wall or when reported. A spinning wall's torque about its axis in the
+    /// sense of its spin is T = ê·M with ê = ω/|ω|, each friction force acting at the surface
     /// point y where its particle touches (the lever the wall turns; on a ball or cylinder
     /// |y − c| = R). T > 0 while the wall drives the particles round with it; |ω| T is the
-    /// power the spin puts in. Summed in fixed chunks (thread-count independent).
+    /// power the spin puts in.
     fn record_applied(&mut self, ctx: &EffectContext<'_, D>, applied: &[Vector<D>]) {
-        let Some(axis) = self.spin_axis else {
+        if self.spin_axis.is_none() && !self.report_moment {
             return;
-        };
-        let p = ctx.particles;
-        let wall = &*self.geometry;
+        }
         let shift = wall_shift(&self.motion, ctx.time);
-        let centre = self.point;
-        applied
-            .par_chunks(CHUNK)
-            .enumerate()
-            .map(|(c, chunk)| {
-                let mut torque = 0.0;
-                for (k, a) in chunk.iter().enumerate() {
-                    let i = c * CHUNK + k;
-                    let x = p.positions0[i] + p.displacements[i] - shift;
-                    let lever = surface_point(wall, i, x, wall.contact(i, x)) - centre;
-                    let moment = vector_to_3d(&lever).cross(&vector_to_3d(a));
-                    torque += p.masses[i] * axis.dot(&moment);
-                }
-                torque
-            })
-            .collect_into_vec(&mut self.chunk_torques);
-        self.torque = self.chunk_torques.iter().sum();
+        self.moment = moment_at_surface(
+            &*self.geometry,
+            (shift, self.point),
+            ctx,
+            applied,
+            &mut self.chunk_moments,
+        );
     }
 }
 

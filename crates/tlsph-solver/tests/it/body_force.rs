@@ -168,6 +168,7 @@ fn a_block_dropped_on_a_wall_gets_the_weight_impulse_back_and_energy_closes() {
     );
     m.effects.walls.push(WallDescription {
         name: "floor".into(),
+        report_moment: false,
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),

@@ -25,6 +25,7 @@ fn an_elastic_block_bounces_off_a_wall_with_its_momentum_reversed() {
     );
     m.effects.walls.push(WallDescription {
         name: "floor".into(),
+        report_moment: false,
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),

@@ -305,6 +305,7 @@ fn press_and_withdraw_with_normal<const D: usize>(
     down[D - 1] = -0.01;
     m.effects.walls.push(WallDescription {
         name: "indenter".into(),
+        report_moment: false,
         point,
         normal,
         friction: FrictionCoefficients::single(0.0),
@@ -344,6 +345,7 @@ fn a_wall_faster_than_sound_advances_at_most_a_cfl_length_per_step() {
     let cfl_length = m.config.cfl * m.config.smoothing_factor * 0.05;
     m.effects.walls.push(WallDescription {
         name: "indenter".into(),
+        report_moment: false,
         point: Vector::<2>::new(0.5, 1.0),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(0.0),
@@ -388,6 +390,7 @@ fn the_solver_refuses_a_cylinder_with_a_bad_axis_or_length_or_outside_3d() {
         let mut m = block_held_at_its_base([4, 4, 4], 0.05, 1.0);
         m.effects.walls.push(WallDescription {
             name: "roller".into(),
+            report_moment: false,
             point: Vector::<3>::new(0.1, 0.1, 1.0),
             normal: Vector::<3>::zeros(),
             friction: FrictionCoefficients::single(0.0),
@@ -429,6 +432,7 @@ fn the_solver_refuses_a_cylinder_with_a_bad_axis_or_length_or_outside_3d() {
     let mut flat = block_held_at_its_base([4, 4], 0.05, 1.0);
     flat.effects.walls.push(WallDescription {
         name: "roller".into(),
+        report_moment: false,
         point: Vector::<2>::new(0.1, 1.0),
         normal: Vector::<2>::y(),
         friction: FrictionCoefficients::single(0.0),
@@ -458,6 +462,7 @@ fn the_solver_refuses_a_box_with_bad_edges_or_edge_radius_a_slanted_axis_or_a_sp
         let mut m = block_held_at_its_base([4, 4, 4], 0.05, 1.0);
         m.effects.walls.push(WallDescription {
             name: "die".into(),
+            report_moment: false,
             point: Vector::<3>::new(0.1, 0.1, 0.5),
             normal: Vector::<3>::z(),
             friction: FrictionCoefficients::single(0.3),

@@ -19,6 +19,7 @@ mod spinning_wall;
 mod symmetry;
 mod updated_lagrangian;
 mod wall_friction;
+mod wall_moment;
 
 use approx::assert_relative_eq;
 use tlsph_materials::LinearElastic;

@@ -26,6 +26,7 @@ fn piston_into_bar(speed: f64, amplitude: Option<Amplitude>, end_time: f64) -> M
     );
     m.effects.walls.push(WallDescription {
         name: "piston".into(),
+        report_moment: false,
         point: Vector::<1>::zeros(),
         normal: Vector::<1>::new(1.0),
         friction: FrictionCoefficients::single(0.0),

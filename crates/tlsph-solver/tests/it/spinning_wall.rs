@@ -61,6 +61,7 @@ fn rolled_strip(
     ] {
         m.effects.walls.push(WallDescription {
             name: name.into(),
+            report_moment: false,
             point: Vector::<2>::new(0.5, centre_y),
             normal: Vector::<2>::new(0.0, 1.0),
             friction: FrictionCoefficients::single(mu),
@@ -183,6 +184,7 @@ fn turntable(omega: f64, end_time: f64) -> Model<3> {
     );
     m.effects.walls.push(WallDescription {
         name: "table".into(),
+        report_moment: false,
         point: Vector::<3>::new(0.0, 0.0, press),
         normal: Vector::<3>::new(0.0, 0.0, 2.0),
         friction: FrictionCoefficients::single(1.0),
@@ -199,6 +201,7 @@ fn turntable(omega: f64, end_time: f64) -> Model<3> {
     });
     m.effects.walls.push(WallDescription {
         name: "lid".into(),
+        report_moment: false,
         point: Vector::<3>::new(0.0, 0.0, 0.15 - press),
         normal: Vector::<3>::new(0.0, 0.0, -1.0),
         friction: FrictionCoefficients::single(0.0),

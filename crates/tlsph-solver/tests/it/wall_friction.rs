@@ -30,6 +30,7 @@ pub(super) fn block_on_floor(g: Vector<2>, v0: Vector<2>, mu: f64, end_time: f64
     });
     m.effects.walls.push(WallDescription {
         name: "floor".into(),
+        report_moment: false,
         point: Vector::<2>::zeros(),
         normal: Vector::<2>::new(0.0, 1.0),
         friction: FrictionCoefficients::single(mu),
