@@ -2335,7 +2335,6 @@ fn build_contact<const D: usize>(
         laws,
         nb,
         &body_indices(bodies, n_real),
-        positions0,
         reflections(&model.effects.symmetry_planes),
     ))
 }

@@ -35,8 +35,6 @@ pub struct ParticleContact<const D: usize> {
     laws: Vec<Option<PotentialLaw>>,
     /// Participants, their current positions and candidate partners.
     candidates: ContactCandidates<D>,
-    /// Reference positions of the participants (self-contact exclusion).
-    positions0: Vec<Vector<D>>,
     /// Symmetry planes whose images the contact sees (empty: none).
     mirrors: PlaneReflections<D>,
     /// Per participant: contact force, half of its pairs' potential, summed pair stiffness.
@@ -52,14 +50,13 @@ pub struct ParticleContact<const D: usize> {
 impl<const D: usize> ParticleContact<D> {
     /// Contact between the body pairs that have a law in `laws` (`n_bodies`² entries,
     /// symmetric; a diagonal entry is self-contact); `body_of` gives the body of each of the
-    /// real particles and `positions0` their reference positions. The resultant reported is
+    /// real particles. The resultant reported is
     /// the contact force on the lowest-index body that takes part. With symmetry planes
     /// `mirrors` a participant also meets the images of the participants beyond them.
     pub(crate) fn new(
         laws: Vec<Option<PotentialLaw>>,
         n_bodies: usize,
         body_of: &[u32],
-        positions0: &[Vector<D>],
         mirrors: PlaneReflections<D>,
     ) -> Self {
         let takes_part = |b: u32| {
@@ -72,17 +69,11 @@ impl<const D: usize> ParticleContact<D> {
         let candidates =
             ContactCandidates::new(body_of, takes_part, max_d0, SKIN_FRACTION * min_d0)
                 .with_mirrors(mirrors.clone());
-        let reference = candidates
-            .participants()
-            .iter()
-            .map(|&i| positions0[i as usize])
-            .collect();
         let n = candidates.len();
         Self {
             n_bodies,
             laws,
             candidates,
-            positions0: reference,
             mirrors,
             force: vec![Vector::zeros(); n],
             half_potential: vec![0.0; n],
@@ -98,16 +89,19 @@ impl<const D: usize> ParticleContact<D> {
     /// symmetry planes, their mirror images).
     fn evaluate(&mut self, p: &Particles<D>) {
         let (laws, n_bodies) = (&self.laws, self.n_bodies);
-        let (positions0, mirrors) = (&self.positions0, &self.mirrors);
+        let mirrors = &self.mirrors;
         let law = |a: u32, b: u32| laws[a as usize * n_bodies + b as usize].as_ref();
         // Candidates: a participant of a body in contact; for self-contact, never a reference
-        // kernel neighbour (nor I itself), images included (a bond to a ghost).
+        // kernel neighbour (nor I itself), images included (a bond to a ghost). The reference
+        // positions are the initial ones: a reference update is refused with self-contact.
         self.candidates
             .refresh(&p.positions0, &p.displacements, |pair| {
                 law(pair.body_k, pair.body_j).is_some_and(|law| {
                     pair.across_bodies() || {
-                        let image0 = mirrors.point(&positions0[pair.j], pair.mask);
-                        law.allows_self_pair((image0 - positions0[pair.k]).norm_squared())
+                        let image0 = mirrors.point(&p.positions0[pair.particle_j], pair.mask);
+                        law.allows_self_pair(
+                            (image0 - p.positions0[pair.particle_k]).norm_squared(),
+                        )
                     }
                 })
             });
