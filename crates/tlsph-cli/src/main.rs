@@ -8,7 +8,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
-use tlsph_io::{load_scene, run_scene_to_dir, RunError};
+use tlsph_io::{load_scene, run_scene_to_dir, write_csv, RunError};
 
 #[derive(Parser)]
 #[command(
@@ -39,6 +39,16 @@ enum Command {
         /// Scene file.
         scene: PathBuf,
     },
+    /// Write a body's reference particle positions as CSV (header `x,y,z`, the first D of them;
+    /// one row per particle), the template of an `initial_stress_file` table.
+    Particles {
+        /// Scene file.
+        scene: PathBuf,
+        /// Name of the body.
+        body: String,
+        /// CSV file to write (through a temporary file and a rename).
+        output: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -68,6 +78,49 @@ fn main() -> ExitCode {
             output,
             quiet,
         } => run(scene, output, quiet),
+        Command::Particles {
+            scene,
+            body,
+            output,
+        } => particles(scene, &body, output),
+    }
+}
+
+fn particles(path: PathBuf, body: &str, output: PathBuf) -> ExitCode {
+    let scene = match load_scene(&path) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let Some(rows) = scene.body_positions(body) else {
+        eprintln!(
+            "error: {}: no body named `{body}`; the bodies are {}",
+            path.display(),
+            scene
+                .body_names()
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        return ExitCode::from(2);
+    };
+    let header: Vec<String> = ["x", "y", "z"][..scene.dimension()]
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    let n = rows.len();
+    match write_csv(&output, &header, rows) {
+        Ok(()) => {
+            println!("{n} particles of body `{body}` -> {}", output.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 

@@ -215,3 +215,55 @@ fn run_prints_the_set_up_notes_of_check_unless_quiet() {
     );
     assert!(!run(true).contains("note:"));
 }
+
+#[test]
+fn particles_writes_a_bodys_positions_as_a_stress_table_template() {
+    let tmp = tempfile::tempdir().unwrap();
+    fs::write(tmp.path().join("scene.toml"), SCENE).unwrap();
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["particles", "scene.toml", "target", "target.csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let table = fs::read_to_string(tmp.path().join("target.csv")).unwrap();
+    let lines: Vec<&str> = table.lines().collect();
+    // Header and one row per particle, at the cell centres of the lattice (Δx = 0.01).
+    assert_eq!(lines.len(), 151);
+    assert_eq!(lines[0], "x");
+    for (k, line) in lines[1..].iter().enumerate() {
+        let x: f64 = line.parse().unwrap();
+        assert!((x - 0.01 * (k as f64 + 0.5)).abs() < 1e-12, "{k}: {x}");
+    }
+    // The table with a stress column added is a valid `initial_stress_file`.
+    let stressed: String = std::iter::once("x,xx".to_string())
+        .chain(lines[1..].iter().map(|x| format!("{x},1e-3")))
+        .collect::<Vec<_>>()
+        .join("\n");
+    fs::write(tmp.path().join("stress.csv"), stressed).unwrap();
+    let with_file = SCENE.replace(
+        "spacing = 0.01\n",
+        "spacing = 0.01\ninitial_stress_file = { path = \"stress.csv\" }\n",
+    );
+    assert_ne!(with_file, SCENE);
+    fs::write(tmp.path().join("stressed.toml"), with_file).unwrap();
+    let out = tlsph()
+        .arg("check")
+        .arg(tmp.path().join("stressed.toml"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    // An unknown body exits 2, lists the bodies and writes nothing.
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["particles", "scene.toml", "flyer", "flyer.csv"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("no body named `flyer`; the bodies are `target`"),
+        "{stderr}"
+    );
+    assert!(!tmp.path().join("flyer.csv").exists());
+}

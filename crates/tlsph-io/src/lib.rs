@@ -9,6 +9,7 @@ mod run;
 mod scene;
 mod scene_file;
 mod scene_material;
+mod scene_stress_file;
 mod scene_wall;
 pub mod vtk;
 

@@ -4,7 +4,7 @@
 use crate::geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape};
 use crate::scene_file::{
     BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
-    StressGradients,
+    StressFileTable, StressGradients,
 };
 use crate::scene_wall::build_wall;
 use std::fmt;
@@ -127,6 +127,38 @@ impl Scene {
         }
     }
 
+    /// Reference positions of the particles of the body named `body`, in particle order, each
+    /// as its D coordinates (the rows of an `initial_stress_file` template); `None` if no body
+    /// has that name.
+    pub fn body_positions(&self, body: &str) -> Option<Vec<Vec<f64>>> {
+        fn rows<const D: usize>(m: &Model<D>, body: &str) -> Option<Vec<Vec<f64>>> {
+            let b = m.bodies.iter().find(|b| b.name == body)?;
+            Some(
+                b.positions
+                    .iter()
+                    .map(|x| x.iter().copied().collect())
+                    .collect(),
+            )
+        }
+        match &self.model {
+            DimensionModel::One(m) => rows(m, body),
+            DimensionModel::Two(m) => rows(m, body),
+            DimensionModel::Three(m) => rows(m, body),
+        }
+    }
+
+    /// Names of the bodies, in file order.
+    pub fn body_names(&self) -> Vec<String> {
+        fn names<const D: usize>(m: &Model<D>) -> Vec<String> {
+            m.bodies.iter().map(|b| b.name.clone()).collect()
+        }
+        match &self.model {
+            DimensionModel::One(m) => names(m),
+            DimensionModel::Two(m) => names(m),
+            DimensionModel::Three(m) => names(m),
+        }
+    }
+
     /// Simulated end time \[s\].
     pub fn end_time(&self) -> f64 {
         match &self.model {
@@ -138,6 +170,7 @@ impl Scene {
 }
 
 /// Reads and checks a scene file.
+/// Files the scene names (an `initial_stress_file`) are read relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let origin = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| SceneError {
@@ -147,12 +180,23 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
         field: String::new(),
         message: format!("cannot read the file: {e}"),
     })?;
-    parse_scene(&text, &origin)
+    let folder = path.parent().unwrap_or(Path::new(""));
+    parse_scene_in(&text, &origin, folder)
 }
 
-/// Parses and checks scene text; `origin` names it in errors.
+/// Parses and checks scene text; `origin` names it in errors. Files the scene names are read
+/// relative to the working directory.
 pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
-    let ctx = Context { text, origin };
+    parse_scene_in(text, origin, Path::new(""))
+}
+
+/// Parses and checks scene text whose relative file names are relative to `folder`.
+fn parse_scene_in(text: &str, origin: &str, folder: &Path) -> Result<Scene, SceneError> {
+    let ctx = Context {
+        text,
+        origin,
+        folder,
+    };
     let file: SceneFile = toml::from_str(text).map_err(|e| {
         let (line, column) = match e.span() {
             Some(span) => {
@@ -185,6 +229,8 @@ pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
 pub(crate) struct Context<'a> {
     text: &'a str,
     origin: &'a str,
+    /// Folder that relative file names in the scene are relative to.
+    folder: &'a Path,
 }
 
 impl Context<'_> {
@@ -528,6 +574,9 @@ fn build<const D: usize>(ctx: &Context<'_>, file: &SceneFile) -> Result<Built<D>
                 .map(|t| ("initial_stress", t.span())))
             .or_else(|| {
                 (b.initial_stress_gradient.as_ref()).map(|t| ("initial_stress_gradient", t.span()))
+            })
+            .or_else(|| {
+                (b.initial_stress_file.as_ref()).map(|t| ("initial_stress_file", t.span()))
             });
             if let Some((key, span)) = given {
                 return Err(ctx.error(
@@ -1376,6 +1425,30 @@ fn build_body<const D: usize>(
         )?),
         None => None,
     };
+    let initial_stresses = match &b.initial_stress_file {
+        Some(t) => {
+            let other = b.initial_stress.as_ref().map(|_| "initial_stress").or(b
+                .initial_stress_gradient
+                .as_ref()
+                .map(|_| "initial_stress_gradient"));
+            if let Some(other) = other {
+                return Err(ctx.error(
+                    &t.span(),
+                    &field("initial_stress_file"),
+                    format!("gives the whole initial stress field, so `{other}` cannot be declared with it"),
+                ));
+            }
+            Some(initial_stress_file::<D>(
+                ctx,
+                t,
+                &field("initial_stress_file"),
+                &materials[material],
+                spacing,
+                &positions,
+            )?)
+        }
+        None => None,
+    };
     Ok(BodyDescription {
         name: name.clone(),
         material,
@@ -1385,6 +1458,7 @@ fn build_body<const D: usize>(
         velocities,
         initial_stress,
         initial_stress_gradient,
+        initial_stresses,
     })
 }
 
@@ -1479,6 +1553,61 @@ fn initial_stress_gradient<const D: usize>(
         }
     }
     Ok(gradient)
+}
+
+/// The stress of each particle from `initial_stress_file`: the CSV table at `path` (relative
+/// to the scene's folder), each particle given the stress of its nearest sample within
+/// `reach` (default: the body's `spacing`); the components allowed and the materials as for
+/// `initial_stress`, and every particle's stress on or inside the initial yield surface (the
+/// error names the first that is not, and the line of its sample).
+fn initial_stress_file<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<StressFileTable>,
+    field: &str,
+    material: &MaterialDescription,
+    spacing: f64,
+    positions: &[Vector<D>],
+) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
+    let t = table.get_ref();
+    let reach = match &t.reach {
+        Some(r) => ctx.positive(r, &format!("{field}.reach"))?,
+        None => spacing,
+    };
+    let path = ctx.folder.join(t.path.get_ref());
+    let samples = crate::scene_stress_file::read_stress_samples::<D>(&path)
+        .map_err(|message| ctx.error(&t.path.span(), &format!("{field}.path"), message))?;
+    stress_components_allowed::<D>(ctx, &table.span(), field, &samples.given)?;
+    stress_is_not_state(ctx, &table.span(), field, material)?;
+    let nearest = crate::scene_stress_file::nearest_samples(&samples, positions, reach).map_err(
+        |message| {
+            ctx.error(
+                &table.span(),
+                field,
+                format!("`{}`: {message}", path.display()),
+            )
+        },
+    )?;
+    let mut stresses = Vec::with_capacity(positions.len());
+    for (x, &sample) in positions.iter().zip(&nearest) {
+        let stress = samples.stresses[sample];
+        if let Some((equivalent, yield_stress)) =
+            material.model.outside_initial_yield_surface(&stress)
+        {
+            return Err(ctx.error(
+                &table.span(),
+                field,
+                format!(
+                    "takes the particle at [{}] outside the yield surface of material `{}`: the stress of line {} of `{}` has von Mises stress {equivalent:e} Pa, above the initial yield stress {yield_stress:e} Pa",
+                    point_text(x),
+                    material.name,
+                    samples.lines[sample],
+                    path.display()
+                ),
+            ));
+        }
+        stresses.push(stress);
+    }
+    Ok(stresses)
 }
 
 /// Which stress components a D-dimensional scene may set (`given`: xx, yy, zz, xy, yz, xz):

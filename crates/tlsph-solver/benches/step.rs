@@ -96,6 +96,7 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
             velocities,
             initial_stress: None,
             initial_stress_gradient: None,
+            initial_stresses: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

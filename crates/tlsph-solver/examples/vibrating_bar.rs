@@ -51,6 +51,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             velocities,
             initial_stress: None,
             initial_stress_gradient: None,
+            initial_stresses: None,
         }],
         // Clamp: particle 0 (X = 0) held at zero velocity.
         boundaries: vec![BoundaryDescription {

@@ -357,6 +357,10 @@ pub struct BodyDescription<const D: usize> {
     /// G_k = ∂σ/∂X_k (symmetric) and σ0 = `initial_stress` (zero when absent), e.g. a stress
     /// in equilibrium with a body force. `None`: uniform.
     pub initial_stress_gradient: Option<[tlsph_math::Tensor3; D]>,
+    /// An initial Cauchy stress per particle (same order as `positions`), e.g. a residual
+    /// stress field mapped from a file; excludes `initial_stress` and
+    /// `initial_stress_gradient`. `None`: as those two give.
+    pub initial_stresses: Option<Vec<tlsph_math::Tensor3>>,
 }
 
 /// The linear initial stress σ0 + Σ_k X_k G_k at reference position `x` (σ0 and the

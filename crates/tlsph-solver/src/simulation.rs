@@ -447,6 +447,16 @@ impl<const D: usize> Simulation<D> {
             next_dt: 0.0,
         };
         for (b, body) in model.bodies.iter().enumerate() {
+            if let Some(stresses) = &body.initial_stresses {
+                if body.initial_stress.is_some() || body.initial_stress_gradient.is_some() {
+                    return Err(SetupError::InvalidBody {
+                        body: body.name.clone(),
+                        message: "an initial stress per particle excludes a uniform or linear one (initial_stress, initial_stress_gradient)".into(),
+                    });
+                }
+                sim.set_initial_stresses(b, stresses)?;
+                continue;
+            }
             match (body.initial_stress, body.initial_stress_gradient) {
                 (None, None) => {}
                 (Some(stress), None) => sim.set_initial_stress(b, stress)?,
@@ -1329,6 +1339,24 @@ impl<const D: usize> Simulation<D> {
         body: usize,
         field: impl Fn(&Vector<D>) -> tlsph_math::Tensor3,
     ) -> Result<(), SetupError> {
+        let range = match self.bodies.get(body) {
+            Some(info) => info.range.clone(),
+            None => 0..0,
+        };
+        let stresses: Vec<tlsph_math::Tensor3> =
+            self.particles.positions0[range].iter().map(field).collect();
+        self.set_initial_stresses(body, &stresses)
+    }
+
+    /// Sets an initial Cauchy stress particle by particle on body `body` (`stresses[k]` for its
+    /// particle k, one per particle), e.g. a residual stress field mapped from a file. The
+    /// same conditions as [`Simulation::set_initial_stress`] hold at every particle; an error
+    /// names the first particle that breaks them.
+    pub fn set_initial_stresses(
+        &mut self,
+        body: usize,
+        stresses: &[tlsph_math::Tensor3],
+    ) -> Result<(), SetupError> {
         let refuse = |message: String| {
             Err(SetupError::InvalidConfig {
                 field: "initial_stress",
@@ -1352,10 +1380,14 @@ impl<const D: usize> Simulation<D> {
             ));
         }
         let range = info.range.clone();
-        let stresses: Vec<tlsph_math::Tensor3> = self.particles.positions0[range.clone()]
-            .iter()
-            .map(&field)
-            .collect();
+        if stresses.len() != range.len() {
+            return refuse(format!(
+                "body `{}` has {} particles but {} stresses were given",
+                info.name,
+                range.len(),
+                stresses.len()
+            ));
+        }
         for (k, stress) in stresses.iter().enumerate() {
             let at = || {
                 let x = self.particles.positions0[range.start + k];
@@ -1379,7 +1411,7 @@ impl<const D: usize> Simulation<D> {
                 ));
             }
         }
-        for (i, stress) in range.zip(stresses) {
+        for (i, &stress) in range.zip(stresses) {
             self.particles.stress[i] = stress;
             // P = J σ F⁻ᵀ = σ at the reference state (F = I).
             self.particles.pk1[i] = tlsph_math::project(&stress);
@@ -2748,6 +2780,7 @@ mod penalty_contact_tests {
             positions,
             initial_stress: None,
             initial_stress_gradient: None,
+            initial_stresses: None,
         }
     }
 
@@ -2897,6 +2930,7 @@ mod time_step_tests {
                 positions: positions.clone(),
                 initial_stress: None,
                 initial_stress_gradient: None,
+                initial_stresses: None,
             }],
             boundaries: vec![],
             effects: Default::default(),

@@ -78,6 +78,7 @@ pub fn model(
             velocities: vec![Vector::<2>::zeros(); n],
             initial_stress: None,
             initial_stress_gradient: None,
+            initial_stresses: None,
             positions,
         }],
         boundaries: loads

@@ -16,6 +16,7 @@ mod kernel_groups;
 mod materials;
 mod overview;
 mod placement;
+mod stress_file;
 mod wall_friction;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).

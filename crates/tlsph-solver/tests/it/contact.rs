@@ -43,6 +43,7 @@ pub(super) fn body<const D: usize>(
         positions,
         initial_stress: None,
         initial_stress_gradient: None,
+        initial_stresses: None,
     }
 }
 

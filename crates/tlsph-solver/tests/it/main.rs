@@ -120,6 +120,7 @@ fn model<const D: usize>(
             velocities: positions.iter().map(&velocity).collect(),
             initial_stress: None,
             initial_stress_gradient: None,
+            initial_stresses: None,
             positions,
         }],
         boundaries: vec![],

@@ -299,6 +299,11 @@ fn the_time_step_follows_the_stiffening_of_an_equation_of_state() {
 
 /// A 4 × 4 block (spacing 1 mm, ρ = 8930 kg/m³) of `material`, at rest.
 fn copper_block(material: ElasticPlastic) -> Simulation<2> {
+    Simulation::new(copper_block_model(material)).unwrap()
+}
+
+/// The model of [`copper_block`].
+fn copper_block_model(material: ElasticPlastic) -> tlsph_solver::Model<2> {
     let dx = 1e-3;
     let mut m = model(
         lattice([4, 4], dx),
@@ -308,7 +313,7 @@ fn copper_block(material: ElasticPlastic) -> Simulation<2> {
     );
     m.materials[0].density = 8930.0;
     m.materials[0].model = MaterialModel::ElasticPlastic(material);
-    Simulation::new(m).unwrap()
+    m
 }
 
 #[test]
@@ -362,6 +367,51 @@ fn a_starting_stress_outside_the_yield_surface_is_refused() {
     let last = sim.n_particles() - 1;
     let expected = 85e6 * sim.positions0()[last].x / x_max;
     assert_eq!(sim.stresses()[last][(0, 0)], expected);
+}
+
+#[test]
+fn a_stress_per_particle_is_set_checked_and_exclusive() {
+    let uniaxial = |s: f64| Tensor3::new(s, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let mut sim = copper_block(copper());
+    let n = sim.n_particles();
+    // One stress per particle, each particle its own.
+    let stresses: Vec<Tensor3> = (0..n).map(|k| uniaxial(1e6 * k as f64)).collect();
+    sim.set_initial_stresses(0, &stresses).unwrap();
+    assert!(sim.stresses() == stresses.as_slice());
+    // One too few: refused, naming the counts.
+    let error = copper_block(copper())
+        .set_initial_stresses(0, &stresses[1..])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains(&format!("{n} particles but {} stresses", n - 1)),
+        "{error}"
+    );
+    // Past the surface at one particle: refused, naming that particle.
+    let mut outside = stresses.clone();
+    outside[5] = uniaxial(100e6);
+    let error = copper_block(copper())
+        .set_initial_stresses(0, &outside)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("particle 5 at [") && error.contains("yield surface"),
+        "{error}"
+    );
+    // Through the model: the per-particle field is applied, and excludes a uniform one.
+    let mut m = copper_block_model(copper());
+    m.bodies[0].initial_stresses = Some(stresses.clone());
+    let sim = Simulation::new(m.clone()).unwrap();
+    assert!(sim.stresses() == stresses.as_slice());
+    m.bodies[0].initial_stress = Some(uniaxial(1.0));
+    let Err(error) = Simulation::new(m) else {
+        panic!("a per-particle and a uniform stress together must be refused")
+    };
+    let error = error.to_string();
+    assert!(
+        error.contains("excludes a uniform or linear one"),
+        "{error}"
+    );
 }
 
 #[test]

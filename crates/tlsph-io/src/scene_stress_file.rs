@@ -1,0 +1,194 @@
+//! `initial_stress_file`: an initial Cauchy stress field read from a CSV table of sample points
+//! and given to each particle from its nearest sample (ours, not in the theses, which start
+//! from rest or from a uniform stress). Typical sources: a residual stress computed by another
+//! code, or a field measured on a grid.
+
+use std::path::Path;
+use tlsph_math::{Tensor3, Vector};
+use tlsph_neighbours::CellGrid;
+
+/// Stress columns in the order of a `[xx, yy, zz, xy, yz, xz]` component array.
+pub(crate) const STRESS_COLUMNS: [&str; 6] = ["xx", "yy", "zz", "xy", "yz", "xz"];
+
+/// The sample points of a stress file and the (symmetric) stress at each.
+#[derive(Debug, Clone)]
+pub(crate) struct StressSamples<const D: usize> {
+    /// Sample positions X (reference configuration) \[length\].
+    pub points: Vec<Vector<D>>,
+    /// Cauchy stress at each sample (tension positive; absent components 0) \[stress\].
+    pub stresses: Vec<Tensor3>,
+    /// 1-based line of each sample in the file, for messages.
+    pub lines: Vec<u64>,
+    /// Which of the components `xx, yy, zz, xy, yz, xz` the header names.
+    pub given: [bool; 6],
+}
+
+/// Reads a stress table: a header naming the coordinates `x`, `y`, `z` (the first D, all
+/// required) and any of the components `xx, yy, zz, xy, yz, xz`, in any order, then one row of
+/// numbers per sample. Lines starting with `#` are comments; cells may be padded with spaces.
+/// Errors name the file and, for a bad row, its line.
+pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressSamples<D>, String> {
+    let shown = path.display();
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| format!("cannot read `{shown}`: {e}"))?;
+    let header = reader
+        .headers()
+        .map_err(|e| format!("`{shown}`: {e}"))?
+        .clone();
+    let coordinates = &["x", "y", "z"][..D];
+    // For each column: Ok(axis) for a coordinate, Err(component) for a stress component.
+    let mut columns: Vec<Result<usize, usize>> = Vec::with_capacity(header.len());
+    for name in header.iter() {
+        let column = match (
+            coordinates.iter().position(|c| *c == name),
+            STRESS_COLUMNS.iter().position(|c| *c == name),
+        ) {
+            (Some(axis), _) => Ok(axis),
+            (None, Some(component)) => Err(component),
+            (None, None) => {
+                return Err(format!(
+                    "`{shown}`: unknown column `{name}` in the header; use {} and stress components among xx, yy, zz, xy, yz, xz",
+                    coordinates.join(", ")
+                ))
+            }
+        };
+        if columns.contains(&column) {
+            return Err(format!(
+                "`{shown}`: column `{name}` appears twice in the header"
+            ));
+        }
+        columns.push(column);
+    }
+    if let Some(missing) = (0..D).find(|axis| !columns.contains(&Ok(*axis))) {
+        return Err(format!(
+            "`{shown}`: the header has no column `{}` (a {D}D scene needs {})",
+            coordinates[missing],
+            coordinates.join(", ")
+        ));
+    }
+    let given = std::array::from_fn(|c| columns.contains(&Err(c)));
+    let mut samples = StressSamples {
+        points: Vec::new(),
+        stresses: Vec::new(),
+        lines: Vec::new(),
+        given,
+    };
+    for record in reader.records() {
+        let record = record.map_err(|e| format!("`{shown}`: {e}"))?;
+        let line = record.position().map_or(0, |p| p.line());
+        let mut point = Vector::<D>::zeros();
+        let mut components = [0.0; 6];
+        for (cell, column) in record.iter().zip(&columns) {
+            let value = cell.parse::<f64>().ok().filter(|v| v.is_finite());
+            let Some(value) = value else {
+                let name = match column {
+                    Ok(axis) => coordinates[*axis],
+                    Err(component) => STRESS_COLUMNS[*component],
+                };
+                return Err(format!(
+                    "`{shown}` line {line}: `{name}` must be a finite number, got `{cell}`"
+                ));
+            };
+            match column {
+                Ok(axis) => point[*axis] = value,
+                Err(component) => components[*component] = value,
+            }
+        }
+        let [xx, yy, zz, xy, yz, xz] = components;
+        samples.points.push(point);
+        samples
+            .stresses
+            .push(Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz));
+        samples.lines.push(line);
+    }
+    if samples.points.is_empty() {
+        return Err(format!("`{shown}` has a header but no sample rows"));
+    }
+    Ok(samples)
+}
+
+/// For each of `positions`, the index of the nearest sample (the first in file order among
+/// equally near ones), which must lie within `reach`. The error names the first particle with
+/// no sample that near and how far its nearest sample is.
+pub(crate) fn nearest_samples<const D: usize>(
+    samples: &StressSamples<D>,
+    positions: &[Vector<D>],
+    reach: f64,
+) -> Result<Vec<usize>, String> {
+    let grid = CellGrid::new(&samples.points, reach).map_err(|e| e.to_string())?;
+    let mut nearest = Vec::with_capacity(positions.len());
+    for (k, x) in positions.iter().enumerate() {
+        let mut best: Option<(f64, usize)> = None;
+        grid.for_each_candidate_with_position(x, |index, point| {
+            let candidate = ((point - x).norm_squared(), index as usize);
+            if best.is_none_or(|b| candidate < b) {
+                best = Some(candidate);
+            }
+        });
+        match best {
+            Some((distance_squared, index)) if distance_squared <= reach * reach => {
+                nearest.push(index)
+            }
+            _ => {
+                let closest = samples
+                    .points
+                    .iter()
+                    .map(|p| (p - x).norm())
+                    .fold(f64::INFINITY, f64::min);
+                return Err(format!(
+                    "particle {k} at [{}] has no sample within reach {reach:e} (the nearest is {closest:e} away): the file does not cover the body, or its coordinates are in other units or another frame",
+                    crate::scene::point_text(x)
+                ));
+            }
+        }
+    }
+    Ok(nearest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn samples_1d(points: &[f64]) -> StressSamples<1> {
+        StressSamples {
+            points: points.iter().map(|x| Vector::<1>::new(*x)).collect(),
+            stresses: points.iter().map(|x| Tensor3::identity() * *x).collect(),
+            lines: (2..).take(points.len()).collect(),
+            given: [true, false, false, false, false, false],
+        }
+    }
+
+    #[test]
+    fn each_particle_takes_its_nearest_sample_and_ties_go_to_the_earlier_row() {
+        // Samples at 0, 1, 1 (a repeated point) and 2.5; particles at 0.4, 1.0, 1.75, 2.2.
+        let samples = samples_1d(&[0.0, 1.0, 1.0, 2.5]);
+        let particles: Vec<Vector<1>> = [0.4, 1.0, 1.75, 2.2]
+            .iter()
+            .map(|x| Vector::<1>::new(*x))
+            .collect();
+        // 1.75 is equally near 1.0 (rows 1 and 2) and 2.5: the earliest row wins.
+        assert_eq!(
+            nearest_samples(&samples, &particles, 1.0).unwrap(),
+            vec![0, 1, 1, 3]
+        );
+    }
+
+    #[test]
+    fn a_particle_beyond_reach_of_every_sample_is_named() {
+        let samples = samples_1d(&[0.0, 1.0]);
+        let particles = [Vector::<1>::new(0.1), Vector::<1>::new(1.6)];
+        let e = nearest_samples(&samples, &particles, 0.5).unwrap_err();
+        assert!(
+            e.contains("particle 1 at [1.6]") && e.contains("the nearest is 6"),
+            "{e}"
+        );
+        // With a longer reach it is covered.
+        assert_eq!(
+            nearest_samples(&samples, &particles, 0.7).unwrap(),
+            vec![0, 1]
+        );
+    }
+}
