@@ -25,23 +25,23 @@ pub(crate) struct StressSamples<const D: usize> {
 
 /// Reads a stress table: a header naming the coordinates `x`, `y`, `z` (the first D, all
 /// required) and any of the components `xx, yy, zz, xy, yz, xz`, in any order, then one row of
-/// numbers per sample. Lines starting with `#` are comments; cells may be padded with spaces.
-/// Errors name the file and, for a bad row, its line.
+/// numbers per sample, separated by commas. Blank lines and lines starting with `#` are
+/// skipped; cells may be padded with spaces. Errors name the file and, for a bad row, its line
+/// (counting every line of the file).
 pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressSamples<D>, String> {
     let shown = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| format!("cannot read `{shown}`: {e}"))?;
-    let header = reader
-        .headers()
-        .map_err(|e| format!("`{shown}`: {e}"))?
-        .clone();
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read `{shown}`: {e}"))?;
+    let mut lines = (1u64..).zip(text.lines()).filter(|(_, l)| {
+        let l = l.trim();
+        !(l.is_empty() || l.starts_with('#'))
+    });
+    let Some((_, header)) = lines.next() else {
+        return Err(format!("`{shown}` has no header line"));
+    };
     let coordinates = &["x", "y", "z"][..D];
     // For each column: Ok(axis) for a coordinate, Err(component) for a stress component.
-    let mut columns: Vec<Result<usize, usize>> = Vec::with_capacity(header.len());
-    for name in header.iter() {
+    let mut columns: Vec<Result<usize, usize>> = Vec::new();
+    for name in header.split(',').map(str::trim) {
         let column = match (
             coordinates.iter().position(|c| *c == name),
             STRESS_COLUMNS.iter().position(|c| *c == name),
@@ -76,12 +76,18 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
         lines: Vec::new(),
         given,
     };
-    for record in reader.records() {
-        let record = record.map_err(|e| format!("`{shown}`: {e}"))?;
-        let line = record.position().map_or(0, |p| p.line());
+    for (line, row) in lines {
+        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+        if cells.len() != columns.len() {
+            return Err(format!(
+                "`{shown}` line {line}: {} cells, but the header names {} columns",
+                cells.len(),
+                columns.len()
+            ));
+        }
         let mut point = Vector::<D>::zeros();
         let mut components = [0.0; 6];
-        for (cell, column) in record.iter().zip(&columns) {
+        for (cell, column) in cells.iter().zip(&columns) {
             let value = cell.parse::<f64>().ok().filter(|v| v.is_finite());
             let Some(value) = value else {
                 let name = match column {

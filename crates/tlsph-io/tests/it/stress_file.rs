@@ -194,6 +194,14 @@ fn stress_file_errors_name_the_file_line_and_field() {
             "path",
             "line 2: `yy` must be a finite number",
         ),
+        // Comment and blank lines count: the bad row is the file's line 5.
+        (
+            key,
+            "# header next\nx, y, yy\n\n# a row next\n0.0, 0.0, 1.0, 2.0\n",
+            "path",
+            "line 5: 4 cells, but the header names 3 columns",
+        ),
+        (key, "# only a comment\n", "path", "no header line"),
         (
             key,
             "x, y, yy\n0.0, zero, 1.0\n",
