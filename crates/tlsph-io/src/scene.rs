@@ -1536,23 +1536,45 @@ fn initial_stress_gradient<const D: usize>(
     let gradient = slopes.map(|[xx, yy, zz, xy, yz, xz]| {
         tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
     });
-    for x in positions {
-        let stress = tlsph_solver::linear_stress_at(at_origin, &gradient, x);
+    within_initial_yield(ctx, &span, field, material, positions, |k| {
+        (
+            tlsph_solver::linear_stress_at(at_origin, &gradient, &positions[k]),
+            String::new(),
+        )
+    })?;
+    Ok(gradient)
+}
+
+/// The initial stress of each of `positions` (`stress_of(k)`: the stress of particle k and
+/// where it came from, for the message), each on or inside the initial yield surface of
+/// `material`; the error names the first particle that is not.
+fn within_initial_yield<const D: usize>(
+    ctx: &Context<'_>,
+    span: &Range<usize>,
+    field: &str,
+    material: &MaterialDescription,
+    positions: &[Vector<D>],
+    stress_of: impl Fn(usize) -> (tlsph_math::Tensor3, String),
+) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
+    let mut stresses = Vec::with_capacity(positions.len());
+    for (k, x) in positions.iter().enumerate() {
+        let (stress, source) = stress_of(k);
         if let Some((equivalent, yield_stress)) =
             material.model.outside_initial_yield_surface(&stress)
         {
             return Err(ctx.error(
-                &span,
+                span,
                 field,
                 format!(
-                    "takes the particle at [{}] outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa",
+                    "takes the particle at [{}] outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa{source} exceeds the initial yield stress {yield_stress:e} Pa",
                     point_text(x),
                     material.name
                 ),
             ));
         }
+        stresses.push(stress);
     }
-    Ok(gradient)
+    Ok(stresses)
 }
 
 /// The stress of each particle from `initial_stress_file`: the CSV table at `path` (relative
@@ -1587,27 +1609,13 @@ fn initial_stress_file<const D: usize>(
             )
         },
     )?;
-    let mut stresses = Vec::with_capacity(positions.len());
-    for (x, &sample) in positions.iter().zip(&nearest) {
-        let stress = samples.stresses[sample];
-        if let Some((equivalent, yield_stress)) =
-            material.model.outside_initial_yield_surface(&stress)
-        {
-            return Err(ctx.error(
-                &table.span(),
-                field,
-                format!(
-                    "takes the particle at [{}] outside the yield surface of material `{}`: the stress of line {} of `{}` has von Mises stress {equivalent:e} Pa, above the initial yield stress {yield_stress:e} Pa",
-                    point_text(x),
-                    material.name,
-                    samples.lines[sample],
-                    path.display()
-                ),
-            ));
-        }
-        stresses.push(stress);
-    }
-    Ok(stresses)
+    within_initial_yield(ctx, &table.span(), field, material, positions, |k| {
+        let sample = nearest[k];
+        (
+            samples.stresses[sample],
+            format!(" (line {} of `{}`)", samples.lines[sample], path.display()),
+        )
+    })
 }
 
 /// Which stress components a D-dimensional scene may set (`given`: xx, yy, zz, xy, yz, xz):
