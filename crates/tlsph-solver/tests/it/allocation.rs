@@ -74,6 +74,11 @@ fn allocations_during_steps<const D: usize>(model: Model<D>, steps: usize) -> us
         sim.step().unwrap();
         sim.step().unwrap();
     });
+    // Every worker takes a job from its own broadcast queue, so each has set up its
+    // work-stealing state (crossbeam's epoch handle, allocated on a thread's first steal): on
+    // a loaded machine one worker may have taken no part in the warm-up steps and would set
+    // it up, once, in the first measured step.
+    pool.broadcast(|_| ());
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     COUNTED.with(|c| c.set(true));
     pool.install(|| {
