@@ -575,6 +575,94 @@ impl<const D: usize> RigidBox<D> {
 
 wall_by_distance!(RigidBox);
 
+/// A rigid cone (ours, not in the theses): the solid cone of half-angle α (between its axis
+/// and its flanks) whose tip is at `tip` and which opens along the unit `axis`, unbounded
+/// towards its base, with its tip optionally rounded to a sphere of radius ρ tangent to the
+/// flanks; in 2D the same law is a wedge (the cone in plane strain). E.g. a conical indenter
+/// (a Rockwell diamond, α = 60°, ρ = 0.2 mm; the cone of the same area function as a Vickers
+/// or Berkovich pyramid, α = 70.3°), a wedge indenter, a conical penetrator's nose.
+///
+/// With the offset q = x − a of a point from the apex a = tip + ρ â of the sharp cone whose
+/// rounding this is, its height z = q·â along the axis, its distance r from the axis and
+/// t = r sin α + z cos α its reach along the flank from the apex, the signed distance to the
+/// rounded cone's surface is s = r cos α − z sin α − ρ where t > 0 (beside the flank: negative
+/// inside), pushed along the flank's outward normal n̂ = r̂ cos α − â sin α, and s = |q| − ρ
+/// where t ≤ 0 (round the tip), pushed along q/|q|. The two agree in value and direction where
+/// t = 0, so s is continuously differentiable, and the push k δ n̂ with δ = Δx/2 − s is the
+/// gradient of the spring's ½ k δ²; a particle pushed inside is pushed out through the
+/// nearer flank.
+#[derive(Debug, Clone)]
+pub struct RigidCone<const D: usize> {
+    /// Apex of the sharp cone, tip + ρ â \[m\].
+    apex: Vector<D>,
+    /// Unit axis, from the tip into the cone.
+    axis: Vector<D>,
+    /// (sin α, cos α).
+    sin_cos: (f64, f64),
+    /// ρ \[m\] (0: a sharp tip).
+    tip_radius: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> RigidCone<D> {
+    /// The cone with its tip at `tip`, opening along `axis` (normalised here), of half-angle
+    /// `half_angle` α (radians, 0 < α < π/2, which the caller checks) and with its tip rounded
+    /// to `tip_radius` ρ ≥ 0, for particles with smoothing lengths `h`, sound speeds `c0` and
+    /// spacings `dx` (one entry per particle).
+    pub fn new(
+        tip: Vector<D>,
+        axis: Vector<D>,
+        half_angle: f64,
+        tip_radius: f64,
+        h: &[f64],
+        c0: &[f64],
+        dx: &[f64],
+    ) -> Self {
+        let axis = axis.normalize();
+        Self {
+            apex: tip + axis * tip_radius,
+            axis,
+            sin_cos: half_angle.sin_cos(),
+            tip_radius,
+            springs: PenaltySprings::new(h, c0, dx),
+        }
+    }
+
+    /// Signed distance s from `x` to the cone's surface (negative inside) and the unit outward
+    /// direction from the nearest surface point towards `x` (the nearer flank's outward normal
+    /// inside; for a point on the axis inside, the flank across the axis from it along the
+    /// coordinate axis least aligned with the cone's).
+    #[inline]
+    pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
+        let (sin, cos) = self.sin_cos;
+        let offset = x - self.apex;
+        let height = offset.dot(&self.axis);
+        let radial = offset - self.axis * height;
+        let r = radial.norm();
+        if r * sin + height * cos > 0.0 {
+            let radial_unit = if r > 0.0 {
+                radial / r
+            } else {
+                across_axis(&self.axis)
+            };
+            (
+                r * cos - height * sin - self.tip_radius,
+                radial_unit * cos - self.axis * sin,
+            )
+        } else {
+            let length = offset.norm();
+            let direction = if length > 0.0 {
+                offset / length
+            } else {
+                -self.axis
+            };
+            (length - self.tip_radius, direction)
+        }
+    }
+}
+
+wall_by_distance!(RigidCone);
+
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
 /// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).

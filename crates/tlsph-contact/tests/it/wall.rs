@@ -1,12 +1,12 @@
 //! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
-//! cylinder, the finite cylinder, the box), the surface point and spin velocity their friction reads, and their Coulomb
+//! cylinder, the finite cylinder, the box, the cone), the surface point and spin velocity their friction reads, and their Coulomb
 //! friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
     spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
-    FrictionCoefficients, RigidBall, RigidBox, RigidCylinder, RigidPlane, Vector, WallGeometry,
-    WALL_STIFFNESS_FACTOR,
+    FrictionCoefficients, RigidBall, RigidBox, RigidCone, RigidCylinder, RigidPlane, Vector,
+    WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 use tlsph_math::Vector3;
 
@@ -447,6 +447,113 @@ fn a_box_pushes_off_its_faces_round_its_edges_and_corners_and_out_of_its_inside(
         at(-1.8, 0.1, 0.3),
     ];
     assert_push_is_energy_gradient(&block, &points);
+}
+
+#[test]
+fn a_cone_pushes_off_its_flanks_round_its_tip_and_out_of_its_inside() {
+    // Cone of half-angle 60° with its tip at (1, 0, 0), opening along (0, 1, 1)/√2, particle
+    // contact radius ½: δ = ½ − s with s the distance to the solid, along its outward normal.
+    let (sin, cos) = 60f64.to_radians().sin_cos();
+    let tip = Vector::<3>::new(1.0, 0.0, 0.0);
+    let e2 = Vector::<3>::new(0.0, 1.0, 1.0).normalize();
+    let (e0, e1) = (Vector::<3>::x(), e2.cross(&Vector::<3>::x()));
+    let at = |a: f64, b: f64, c: f64| tip + e0 * a + e1 * b + e2 * c;
+    let cone = |radius: f64| {
+        RigidCone::<3>::new(
+            tip,
+            e2 * 3.0,
+            60f64.to_radians(),
+            radius,
+            &[1.2],
+            &[3.0],
+            &[1.0],
+        )
+    };
+    let sharp = cone(0.0);
+    let check = |cone: &RigidCone<3>, x: Vector<3>, delta: f64, n: Vector<3>| {
+        assert_contact(cone, |y| cone.distance(y).0, x, (delta, n))
+    };
+    // Beside a flank (any azimuth): 0.3 out along its normal from a point of the flank.
+    for azimuth in [e0, (e0 - e1 * 2.0).normalize()] {
+        let normal = azimuth * cos - e2 * sin;
+        let on_flank = tip + azimuth * (2.0 * sin / cos) + e2 * 2.0;
+        check(&sharp, on_flank + normal * 0.3, 0.2, normal);
+    }
+    // Below the tip, and round it where the point is past the flank's end: from the tip.
+    check(&sharp, at(0.0, 0.0, -0.3), 0.2, -e2);
+    let past_tip = Vector::<3>::new(0.1, 0.0, -0.3);
+    check(
+        &sharp,
+        at(0.1, 0.0, -0.3),
+        0.5 - past_tip.norm(),
+        (e0 * 0.1 - e2 * 0.3) / past_tip.norm(),
+    );
+    // Pushed inside: out through the nearer flank, by the contact radius plus the depth.
+    check(
+        &sharp,
+        at(0.5, 0.0, 3.0),
+        0.5 - (0.5 * cos - 3.0 * sin),
+        e0 * cos - e2 * sin,
+    );
+    assert_eq!(sharp.contact(0, at(5.0, 0.0, 1.0)).0, 0.0);
+    assert_eq!(sharp.contact(0, at(0.0, 0.0, -0.6)).0, 0.0);
+    // Its tip rounded to ρ = 0.4: the tip point is where it was, round the tip the push is
+    // from the sphere's centre, and far up a flank the surface stands ρ (1 − sin α) further
+    // out than the sharp cone's (its flanks are the sharp cone's from tip + ρ â, moved out by
+    // ρ).
+    let rounded = cone(0.4);
+    check(&rounded, at(0.0, 0.0, -0.3), 0.2, -e2);
+    let from_centre = Vector::<3>::new(0.2, 0.0, -0.5);
+    check(
+        &rounded,
+        at(0.2, 0.0, -0.1),
+        0.5 - (from_centre.norm() - 0.4),
+        (e0 * 0.2 - e2 * 0.5) / from_centre.norm(),
+    );
+    let far_up = at(6.0, 0.0, 3.0);
+    assert_relative_eq!(
+        rounded.contact(0, far_up).0 - sharp.contact(0, far_up).0,
+        0.4 * (1.0 - sin),
+        epsilon = 1e-13
+    );
+    // In each region and on either side of where the flank meets the tip's region (where the
+    // height from the apex is −r tan α: just above and just below it at r = 0.15).
+    let points = [
+        at(1.8, 0.4, 0.8),
+        at(-0.3, 0.2, -0.2),
+        at(0.2, -0.3, 1.5),
+        at(0.15, 0.0, -0.25),
+        at(0.15, 0.0, -0.27),
+    ];
+    assert_push_is_energy_gradient(&sharp, &points);
+    // (The flank meets the rounded tip's region where the height from tip + ρ â is −r tan α.)
+    let mut points = points.map(|x| x + e2 * 0.2);
+    points[3..].copy_from_slice(&[at(0.15, 0.0, 0.15), at(0.15, 0.0, 0.13)]);
+    assert_push_is_energy_gradient(&rounded, &points);
+}
+
+#[test]
+fn a_cone_in_2d_is_a_wedge() {
+    // Wedge of half-angle 45° with its edge at the origin, opening along y: each flank pushes
+    // along its own outward normal, below the edge the push is from the edge.
+    let wedge = RigidCone::<2>::new(
+        Vector::<2>::zeros(),
+        Vector::<2>::y(),
+        45f64.to_radians(),
+        0.0,
+        &[1.2],
+        &[3.0],
+        &[1.0],
+    );
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for side in [1.0, -1.0] {
+        let (delta, n) = wedge.contact(0, Vector::<2>::new(side, 0.5));
+        assert_relative_eq!(delta, 0.5 - 0.5 * half, epsilon = 1e-15);
+        assert_relative_eq!(n, Vector::<2>::new(side * half, -half), epsilon = 1e-15);
+    }
+    let (delta, n) = wedge.contact(0, Vector::<2>::new(0.0, -0.2));
+    assert_relative_eq!(delta, 0.3, epsilon = 1e-15);
+    assert_eq!(n, -Vector::<2>::y());
 }
 
 #[test]
