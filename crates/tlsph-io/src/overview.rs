@@ -164,17 +164,24 @@ fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
                     .into(),
             );
         }
-        for wall in effects
-            .walls
-            .iter()
-            .filter(|w| matches!(w.shape, WallShape::Box { .. }))
-        {
+        for wall in &effects.walls {
+            let (what, drives) = match wall.shape {
+                WallShape::Box { .. } => (
+                    "a box",
+                    "its edges, pressed into a body, can drive the particle lattice's zig-zag \
+                     mode and throw surface particles off beside its faces",
+                ),
+                WallShape::Cone { .. } => (
+                    "a cone",
+                    "its tip and flanks, pressed into a body, can drive the particle \
+                     lattice's zig-zag mode and pierce the surface",
+                ),
+                _ => continue,
+            };
             notes.push(format!(
-                "wall `{}` is a box in a total-Lagrangian scene without [hourglass_control]: \
-                 its edges, pressed into a body, can drive the particle lattice's \
-                 zig-zag mode and throw surface particles off beside its faces; declare \
-                 hourglass control (coefficient = 1 held the case measured in \
-                 docs/scene-format.md)",
+                "wall `{}` is {what} in a total-Lagrangian scene without [hourglass_control]: \
+                 {drives}; declare hourglass control (coefficient = 1 held the case \
+                 measured in docs/scene-format.md)",
                 wall.name
             ));
         }

@@ -283,7 +283,11 @@ impl Context<'_> {
     }
 
     /// A finite value ≥ 0, or an error at its span.
-    fn non_negative(&self, value: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+    pub(crate) fn non_negative(
+        &self,
+        value: &Spanned<f64>,
+        field: &str,
+    ) -> Result<f64, SceneError> {
         let v = *value.get_ref();
         if v.is_finite() && v >= 0.0 {
             Ok(v)

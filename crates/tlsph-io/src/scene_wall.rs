@@ -1,4 +1,5 @@
-//! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder or box with its friction and motion,
+//! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder, box or cone with its friction and
+//! motion,
 //! checked against the bodies' starting positions and the symmetry planes (numerics.md §13
 //! `[C]`; the finite shapes are ours).
 
@@ -78,7 +79,10 @@ pub(crate) fn build_wall<const D: usize>(
                 WallShape::Cylinder {
                     length: Some(_), ..
                 } => false,
-                WallShape::Disc { .. } | WallShape::Ball { .. } | WallShape::Box { .. } => false,
+                WallShape::Disc { .. }
+                | WallShape::Ball { .. }
+                | WallShape::Box { .. }
+                | WallShape::Cone { .. } => false,
             };
             let sliding_across_a_mirror = symmetry_planes.iter().find(|p| {
                 axis_index(p.axis.get_ref()).is_some_and(|a| {
@@ -146,8 +150,9 @@ pub(crate) fn build_wall<const D: usize>(
     })
 }
 
-/// The wall's shape from `shape`, `radius`, `normal` and `axis`, and its normal as given (the
-/// last coordinate axis for a ball or a cylinder, which have none).
+/// The wall's shape from `shape`, `radius`, `normal`, `axis`, `length`, `size`, `edge_radius`,
+/// `half_angle` and `tip_radius`, and its normal as given (the last coordinate axis for a ball,
+/// a cylinder or a cone, which have none).
 fn wall_shape<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
@@ -160,6 +165,7 @@ fn wall_shape<const D: usize>(
         Ball,
         Cylinder,
         Box,
+        Cone,
     }
     let default_kind = if w.radius.is_some() {
         Kind::Disc
@@ -177,6 +183,7 @@ fn wall_shape<const D: usize>(
             ("ball", Kind::Ball),
             ("cylinder", Kind::Cylinder),
             ("box", Kind::Box),
+            ("cone", Kind::Cone),
         ],
     )?;
     let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
@@ -190,15 +197,22 @@ fn wall_shape<const D: usize>(
             format!("a cylinder wall needs a 3D scene, got {D}D (in 2D, shape = \"ball\" is the cylinder in plane strain)"),
         ));
     }
-    if kind == Kind::Box && D < 2 {
+    if matches!(kind, Kind::Box | Kind::Cone) && D < 2 {
         return Err(ctx.error(
             &shape_span,
             &key("shape"),
-            "a 1D wall is a point; a box needs a 2D or 3D scene".into(),
+            "a 1D wall is a point; a box or a cone needs a 2D or 3D scene".into(),
         ));
     }
     let radius = match (&w.radius, kind) {
-        (None, Kind::Plane | Kind::Box) => 0.0,
+        (None, Kind::Plane | Kind::Box | Kind::Cone) => 0.0,
+        (Some(r), Kind::Cone) => {
+            return Err(ctx.error(
+                &r.span(),
+                &key("radius"),
+                "a cone wall has a `half_angle`, and a `tip_radius` if its tip is rounded, not a radius".into(),
+            ))
+        }
         (Some(r), Kind::Box) => {
             return Err(ctx.error(
                 &r.span(),
@@ -237,9 +251,9 @@ fn wall_shape<const D: usize>(
         }
         Ok(direction)
     };
-    // A ball or cylinder has no normal; a box's is optional; a plane and a disc need one.
-    // The last axis stands in.
-    let radial = matches!(kind, Kind::Ball | Kind::Cylinder);
+    // A ball, a cylinder or a cone has no normal; a box's is optional; a plane and a disc need
+    // one. The last axis stands in.
+    let radial = matches!(kind, Kind::Ball | Kind::Cylinder | Kind::Cone);
     let normal =
         match (&w.normal, radial) {
             (None, false) if kind == Kind::Box => {
@@ -250,7 +264,7 @@ fn wall_shape<const D: usize>(
             (Some(n), true) => return Err(ctx.error(
                 &n.span(),
                 &key("normal"),
-                "a ball or cylinder wall has no normal (it pushes away from its centre or axis)"
+                "a ball, cylinder or cone wall has no normal (it is placed by its point, and turned by its axis)"
                     .into(),
             )),
             (None, true) => {
@@ -268,12 +282,12 @@ fn wall_shape<const D: usize>(
             (Some(n), false) => non_zero(n, "normal")?,
         };
     let axis = match (&w.axis, kind) {
-        (Some(a), Kind::Cylinder) => non_zero(a, "axis")?,
-        (None, Kind::Cylinder) => {
+        (Some(a), Kind::Cylinder | Kind::Cone) => non_zero(a, "axis")?,
+        (None, Kind::Cylinder | Kind::Cone) => {
             return Err(ctx.error(
                 &shape_span,
                 &key("axis"),
-                "is required by a cylinder wall".into(),
+                "is required by a cylinder or cone wall".into(),
             ))
         }
         (Some(a), Kind::Ball) if w.spin.is_some() && D == 3 => non_zero(a, "axis")?,
@@ -301,7 +315,7 @@ fn wall_shape<const D: usize>(
             return refuse(
                 a.span(),
                 "axis",
-                "only a cylinder wall, a box in 3D or a spinning ball in 3D has an axis",
+                "only a cylinder or cone wall, a box in 3D or a spinning ball in 3D has an axis",
             )
         }
         (None, _) => Vector::<D>::zeros(),
@@ -361,6 +375,40 @@ fn wall_shape<const D: usize>(
         }
         (None, _) => 0.0,
     };
+    let half_angle = match (&w.half_angle, kind) {
+        (Some(a), Kind::Cone) => {
+            let degrees = *a.get_ref();
+            if !(degrees > 0.0 && degrees < 90.0) {
+                return refuse(
+                    a.span(),
+                    "half_angle",
+                    &format!("must be an angle in degrees between 0 and 90 (exclusive), got {degrees}"),
+                );
+            }
+            degrees.to_radians()
+        }
+        (None, Kind::Cone) => {
+            return refuse(
+                shape_span,
+                "half_angle",
+                "is required by a cone wall: the angle between its axis and its flanks, in degrees (60 for a Rockwell cone)",
+            )
+        }
+        (Some(a), _) => {
+            return refuse(a.span(), "half_angle", "only a cone wall has a half-angle")
+        }
+        (None, _) => 0.0,
+    };
+    let tip_radius =
+        match (&w.tip_radius, kind) {
+            (Some(r), Kind::Cone) => ctx.non_negative(r, &key("tip_radius"))?,
+            (Some(r), _) => return refuse(
+                r.span(),
+                "tip_radius",
+                "only a cone wall has a tip radius (a box's edges are rounded by `edge_radius`)",
+            ),
+            (None, _) => 0.0,
+        };
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
@@ -375,6 +423,11 @@ fn wall_shape<const D: usize>(
             size,
             axis,
             edge_radius,
+        },
+        Kind::Cone => WallShape::Cone {
+            axis,
+            half_angle,
+            tip_radius,
         },
     };
     if let Some(Err(why)) = shape.box_frame(normal) {
@@ -437,8 +490,8 @@ fn wall_spin<const D: usize>(
     Ok(axis * omega)
 }
 
-/// No particle may start inside a ball, a cylinder or a box, nor behind a plane or a disc's
-/// face.
+/// No particle may start inside a ball, a cylinder, a box or a cone, nor behind a plane or a
+/// disc's face.
 fn check_start<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
@@ -491,22 +544,35 @@ fn check_start<const D: usize>(
             let Some(Ok(block)) = shape.rigid_box(point, unit, (&[], &[], &[])) else {
                 return Ok(());
             };
-            for body in bodies {
-                if let Some(x) = body.positions.iter().find(|x| block.distance(**x).0 < 0.0) {
-                    return Err(ctx.error(
-                        &w.point.span(),
-                        &key("point"),
-                        format!(
-                            "body `{}` starts inside the box: its particle at [{}] is {:.3e} inside the surface of the box of edges [{}] about its centre",
-                            body.name,
-                            point_text(x),
-                            -block.distance(*x).0,
-                            point_text(&size),
-                        ),
-                    ));
-                }
-            }
-            return Ok(());
+            return match first_inside(bodies, |x| block.distance(x).0) {
+                Some((body, x, depth)) => Err(ctx.error(
+                    &w.point.span(),
+                    &key("point"),
+                    format!(
+                        "body `{body}` starts inside the box: its particle at [{}] is {depth:.3e} inside the surface of the box of edges [{}] about its centre",
+                        point_text(&x),
+                        point_text(&size),
+                    ),
+                )),
+                None => Ok(()),
+            };
+        }
+        WallShape::Cone { .. } => {
+            // Checked when the shape was read.
+            let Some(Ok(cone)) = shape.rigid_cone(point, (&[], &[], &[])) else {
+                return Ok(());
+            };
+            return match first_inside(bodies, |x| cone.distance(x).0) {
+                Some((body, x, depth)) => Err(ctx.error(
+                    &w.point.span(),
+                    &key("point"),
+                    format!(
+                        "body `{body}` starts inside the cone: its particle at [{}] is {depth:.3e} inside its surface (`point` is the cone's tip, `axis` points from the tip into it)",
+                        point_text(&x),
+                    ),
+                )),
+                None => Ok(()),
+            };
         }
         WallShape::Plane => None,
         WallShape::Disc { radius } => Some(radius),
@@ -543,6 +609,20 @@ fn check_start<const D: usize>(
     Ok(())
 }
 
+/// The first particle (of the first body that has one) inside a solid wall whose signed
+/// distance (negative inside) is `distance`: its body's name, its position and its depth.
+fn first_inside<const D: usize>(
+    bodies: &[BodyDescription<D>],
+    distance: impl Fn(Vector<D>) -> f64,
+) -> Option<(&str, Vector<D>, f64)> {
+    bodies.iter().find_map(|body| {
+        body.positions.iter().find_map(|x| {
+            let s = distance(*x);
+            (s < 0.0).then(|| (body.name.as_str(), *x, -s))
+        })
+    })
+}
+
 /// The mirrored half of a model meets the wall's mirror image. A finite wall crossing a
 /// symmetry plane must be its own mirror image: a disc (whose face lies across the plane), a
 /// ball, a cylinder lying along the plane or a box with a face parallel to it, centred on it
@@ -559,6 +639,15 @@ fn check_symmetry<const D: usize>(
     symmetry_planes: &[SymmetryPlaneTable],
     key: &dyn Fn(&str) -> String,
 ) -> Result<(), SceneError> {
+    if let WallShape::Cone {
+        axis,
+        half_angle,
+        tip_radius,
+    } = *shape
+    {
+        let cone = (axis / axis.norm(), half_angle, tip_radius);
+        return check_cone_symmetry(ctx, w, cone, point, sliding, symmetry_planes, key);
+    }
     // Only a finite shape (which has a radius or a size) can cross a plane.
     let (finite_span, finite_field) = match (&w.radius, &w.size) {
         (Some(r), _) => (r.span(), "radius"),
@@ -573,7 +662,7 @@ fn check_symmetry<const D: usize>(
         let off_centre =
             |r: f64| (point[a] - position).abs() < r && (point[a] != position || sliding(a));
         let (what, problem) = match *shape {
-            WallShape::Plane => continue,
+            WallShape::Plane | WallShape::Cone { .. } => continue,
             WallShape::Disc { radius } => ("disc", unit[a] == 0.0 && off_centre(radius)),
             WallShape::Ball { radius } => ("ball", off_centre(radius)),
             WallShape::Cylinder {
@@ -649,6 +738,50 @@ fn check_symmetry<const D: usize>(
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// A cone is unbounded towards its base, so it crosses every symmetry plane that its axis does
+/// not point away from steeply enough. It is its own mirror image when its axis lies along
+/// the plane, its tip on it, and it does not move across it; otherwise it must stay clear of
+/// the plane: its axis at an angle θ to the plane's normal with θ + α ≤ 90° (its flanks
+/// never turn back towards the plane), pointing away from the plane, and its rounded tip, the
+/// sphere of radius ρ about tip + ρ â, not reaching it.
+#[allow(clippy::too_many_arguments)]
+fn check_cone_symmetry<const D: usize>(
+    ctx: &Context<'_>,
+    w: &WallTable,
+    (axis, half_angle, tip_radius): (Vector<D>, f64, f64),
+    point: Vector<D>,
+    sliding: impl Fn(usize) -> bool,
+    symmetry_planes: &[SymmetryPlaneTable],
+    key: &dyn Fn(&str) -> String,
+) -> Result<(), SceneError> {
+    let span = w.axis.as_ref().map_or(w.point.span(), |a| a.span());
+    for plane in symmetry_planes {
+        let Some(a) = axis_index(plane.axis.get_ref()).filter(|&a| a < D) else {
+            continue;
+        };
+        let position = *plane.position.get_ref();
+        let where_ = format!("the symmetry plane {} = {position}", plane.axis.get_ref());
+        let problem = if axis[a] == 0.0 {
+            if point[a] == position && !sliding(a) {
+                continue;
+            }
+            format!("the cone's axis lies along {where_} but its tip is off the plane or it moves across it, so the model's mirrored half would meet another cone; put its tip on the plane and move it along the plane only")
+        } else {
+            let away = axis[a].signum();
+            let theta = axis[a].abs().min(1.0).acos();
+            let tip_centre = point[a] + axis[a] * tip_radius;
+            if theta + half_angle <= std::f64::consts::FRAC_PI_2
+                && away * (tip_centre - position) >= tip_radius
+            {
+                continue;
+            }
+            format!("the cone reaches across {where_} (it is unbounded towards its base), so its mirror image is another cone; lay its axis along the plane with its tip on it, or point it away from the plane steeply enough (its axis within 90° − half_angle of the plane's normal) with its tip clear of the plane")
+        };
+        return Err(ctx.error(&span, &key("axis"), problem));
     }
     Ok(())
 }

@@ -667,8 +667,8 @@ pub struct WallDescription<const D: usize> {
     pub friction: FrictionCoefficients,
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
-    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc, a ball or a box,
-    /// or (3D) a cylinder.
+    /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc, a ball, a box or
+    /// a cone (a wedge in 2D), or (3D) a cylinder.
     pub shape: WallShape<D>,
     /// Report the moment M = Σ (x_I − p(t)) × F_I of the wall's force on the particles (and of
     /// its friction force, separately) about the wall's current `point` p(t) (opt-in: without
@@ -722,6 +722,18 @@ pub enum WallShape<const D: usize> {
         /// \[m\].
         edge_radius: f64,
     },
+    /// (2D and 3D) The cone with its tip at `point`, opening along `axis`, unbounded towards
+    /// its base, with its tip sharp or rounded; in 2D a wedge (the cone in plane strain): a
+    /// conical or wedge indenter (`tlsph_contact::RigidCone`). `normal` is not used.
+    Cone {
+        /// Direction from the tip into the cone (need not be unit).
+        axis: Vector<D>,
+        /// Half-angle α between the axis and the flanks, 0 < α < π/2 \[rad\].
+        half_angle: f64,
+        /// Radius ρ ≥ 0 of the sphere (circle in 2D) tangent to the flanks that rounds the tip
+        /// (0: sharp) \[m\].
+        tip_radius: f64,
+    },
 }
 
 impl<const D: usize> WallShape<D> {
@@ -771,22 +783,62 @@ impl<const D: usize> WallShape<D> {
         Some(Ok(block.with_edge_radius(edge_radius)))
     }
 
+    /// The cone of this shape with its tip at `point`, for particles with smoothing lengths,
+    /// sound speeds and spacings `particles` (empty slices: its geometry alone, its `distance`
+    /// but not its contact), or why there is none: a 1D scene, an axis not finite and
+    /// non-zero, a half-angle not within 0 < α < π/2, a tip radius not finite and ≥ 0; `None`
+    /// for any other shape.
+    pub fn rigid_cone(
+        &self,
+        point: Vector<D>,
+        (h, c0, dx): (&[f64], &[f64], &[f64]),
+    ) -> Option<Result<tlsph_contact::RigidCone<D>, String>> {
+        let WallShape::Cone {
+            axis,
+            half_angle,
+            tip_radius,
+        } = *self
+        else {
+            return None;
+        };
+        let why = if D < 2 {
+            format!("a cone needs a 2D or 3D scene (in 2D it is a wedge), got {D}D")
+        } else if !(axis.iter().all(|a| a.is_finite()) && axis.norm() > 0.0) {
+            format!(
+                "a cone's axis must be finite and non-zero, got {:?}",
+                axis.as_slice()
+            )
+        } else if !(half_angle > 0.0 && half_angle < std::f64::consts::FRAC_PI_2) {
+            format!(
+                "a cone's half-angle must lie between 0 and 90°, got {}°",
+                half_angle.to_degrees()
+            )
+        } else if !(tip_radius.is_finite() && tip_radius >= 0.0) {
+            format!("a cone's tip radius must be finite and ≥ 0, got {tip_radius}")
+        } else {
+            return Some(Ok(tlsph_contact::RigidCone::new(
+                point, axis, half_angle, tip_radius, h, c0, dx,
+            )));
+        };
+        Some(Err(why))
+    }
+
     /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its
     /// own axis of symmetry, so the spin moves its surface and not its shape. `Ok(Some(ê))`: a
-    /// plane's or a disc's normal, a cylinder's axis (3D), z for a ball in 2D; `Ok(None)`: any
+    /// plane's or a disc's normal, a cylinder's or a cone's axis (3D), z for a ball in 2D; `Ok(None)`: any
     /// axis (a ball in 3D); `Err`: this wall cannot spin.
     pub fn spin_axis(&self, normal: Vector<D>) -> Result<Option<Vector3>, String> {
         match (D, self) {
             (3, WallShape::Plane | WallShape::Disc { .. }) => {
                 Ok(Some(tlsph_math::vector_to_3d(&normal).normalize()))
             }
-            (3, WallShape::Cylinder { axis, .. }) => {
+            (3, WallShape::Cylinder { axis, .. } | WallShape::Cone { axis, .. }) => {
                 Ok(Some(tlsph_math::vector_to_3d(axis).normalize()))
             }
             (3, WallShape::Ball { .. }) => Ok(None),
             (2, WallShape::Ball { .. }) => Ok(Some(Vector3::z())),
             (_, WallShape::Box { .. }) => Err("a box cannot spin: it has no axis about which turning leaves its shape where it is".into()),
-            (2, _) => Err("in 2D only a ball may spin (about z): a plane or a disc turning in the plane would move its shape".into()),
+            (2, _) => Err("in 2D only a ball may spin (about z): a plane, a disc or a wedge turning in the plane would move its shape".into()),
             _ => Err(format!("a {D}D wall cannot spin")),
         }
     }
@@ -805,7 +857,8 @@ pub struct WallMotion<const D: usize> {
     pub velocity: Vector<D>,
     /// Full angular velocity ω \[rad/s\] about an axis through the wall's point, (0, 0, ω_z)
     /// in 2D; `None`: the wall does not spin. Only about an axis of the wall's own symmetry (a
-    /// plane's or a disc's normal, a cylinder's axis, any axis of a ball; in 2D only a ball),
+    /// plane's or a disc's normal, a cylinder's or a cone's axis, any axis of a ball; in 2D
+    /// only a ball),
     /// so the spin moves the wall's surface, which its friction reads
     /// (`tlsph_contact::spin_velocity`), and not its shape.
     pub spin: Option<Vector3>,

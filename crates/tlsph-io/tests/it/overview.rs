@@ -155,10 +155,11 @@ fn contact_without_hourglass_control_gets_a_note() {
 }
 
 #[test]
-fn a_box_wall_without_hourglass_control_gets_a_note() {
-    // docs/scene-format.md, boxes: a box's sharp edges drive TLSPH's zig-zag mode. The check
-    // names each box wall of a total-Lagrangian scene without hourglass control, and is
-    // silent for the other shapes, with the control, or in updated-Lagrangian.
+fn a_box_or_cone_wall_without_hourglass_control_gets_a_note() {
+    // docs/scene-format.md, boxes and cones: a box's sharp edges and a cone's tip drive
+    // TLSPH's zig-zag mode. The check names each box or cone wall of a total-Lagrangian scene
+    // without hourglass control, and is silent for the other shapes, with the control, or in
+    // updated-Lagrangian.
     let notes = |text: &str| parse_scene(text, "blocks.toml").unwrap().overview().notes;
     let with_box = format!(
         "{TWO_BLOCKS}\n[[wall]]\nname = \"die\"\nshape = \"box\"\npoint = [5.0e-3, 14.0e-3]\nsize = [4.0e-3, 2.0e-3]\n"
@@ -167,6 +168,17 @@ fn a_box_wall_without_hourglass_control_gets_a_note() {
     assert_eq!(advised.len(), 1, "{advised:?}");
     assert!(
         advised[0].starts_with("wall `die` is a box") && advised[0].contains("[hourglass_control]"),
+        "{advised:?}"
+    );
+    // A cone (a wedge in 2D) pointing down at the blocks: the same note.
+    let cone = with_box
+        .replace("shape = \"box\"", "shape = \"cone\"\naxis = [0.0, 1.0]")
+        .replace("size = [4.0e-3, 2.0e-3]", "half_angle = 60.0");
+    let advised = notes(&cone);
+    assert_eq!(advised.len(), 1, "{advised:?}");
+    assert!(
+        advised[0].starts_with("wall `die` is a cone")
+            && advised[0].contains("[hourglass_control]"),
         "{advised:?}"
     );
     let disc = with_box

@@ -317,9 +317,9 @@ fn a_ball_wall_is_read_and_its_keys_are_checked() {
         ),
         (
             "shape = \"ball\"",
-            "shape = \"cone\"",
+            "shape = \"pyramid\"",
             "wall[indenter].shape",
-            "cone",
+            "pyramid",
         ),
     ] {
         let bad = text.replacen(from, to, 1);
@@ -857,4 +857,190 @@ fn a_spin_is_read_about_the_walls_own_axis_and_checked() {
         assert!(e.message.contains(fragment), "{e}");
         assert!(e.line.is_some(), "{e}");
     }
+}
+
+#[test]
+fn a_cone_wall_is_read_placed_and_checked() {
+    // A 120° cone (half-angle 60°) over the half beam, its tip on the beam's top face (z = 4
+    // mm) and on the symmetry plane x = 0, its axis pointing up into the cone.
+    let cone_lines = "shape = \"cone\"\npoint = [0.0, 2.0e-3, 4.0e-3]\naxis = [0.0, 0.0, 1.0]\nhalf_angle = 60.0\n";
+    let cone = HALF_BEND.replace(
+        "shape = \"cylinder\"\npoint = [0.0, 2.0e-3, 7.0e-3]\naxis = [0.0, 1.0, 0.0]\nradius = 3.0e-3\n",
+        cone_lines,
+    );
+    assert!(cone.contains(cone_lines));
+    let scene = parse_scene(&cone, "cone.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert_eq!(
+        model.effects.walls[0].shape,
+        WallShape::Cone {
+            axis: tlsph_math::Vector::<3>::z(),
+            half_angle: 60f64.to_radians(),
+            tip_radius: 0.0,
+        }
+    );
+    let refused = |text: &str, field: &str, needle: &str, line: &str| {
+        let e = error_of(text);
+        assert_eq!(e.field, format!("wall[roller].{field}"), "{e}");
+        assert!(e.message.contains(needle), "{e}");
+        assert_eq!(e.line, Some(line_of(text, line)), "{e}");
+    };
+    // Sunk 1 mm: the top layer's particles nearest the axis (0.71 mm from it, 0.5 mm above
+    // the tip) are inside the flanks (they are 0.25 mm inside).
+    let sunk = cone.replace(
+        "point = [0.0, 2.0e-3, 4.0e-3]",
+        "point = [0.0, 2.0e-3, 3.0e-3]",
+    );
+    refused(
+        &sunk,
+        "point",
+        "starts inside the cone",
+        "point = [0.0, 2.0e-3, 3.0e-3]",
+    );
+    // Its keys: a half-angle is required, within 0–90°; a tip radius ≥ 0; no radius, no
+    // normal; an axis is required. A half-angle or a tip radius on another shape is refused.
+    let angle = "half_angle = 60.0";
+    let no_angle = cone.replace(&format!("{angle}\n"), "");
+    refused(
+        &no_angle,
+        "half_angle",
+        "is required by a cone",
+        "shape = \"cone\"",
+    );
+    for bad in ["90.0", "0.0", "-30.0", "nan"] {
+        let text = cone.replace(angle, &format!("half_angle = {bad}"));
+        refused(
+            &text,
+            "half_angle",
+            "between 0 and 90",
+            &format!("half_angle = {bad}"),
+        );
+    }
+    let with = |extra: &str| cone.replace(angle, &format!("{angle}\n{extra}"));
+    refused(
+        &with("tip_radius = -1.0e-3"),
+        "tip_radius",
+        "≥ 0",
+        "tip_radius = -1.0e-3",
+    );
+    refused(
+        &with("radius = 1.0e-3"),
+        "radius",
+        "not a radius",
+        "radius = 1.0e-3",
+    );
+    refused(
+        &with("normal = [0.0, 0.0, 1.0]"),
+        "normal",
+        "has no normal",
+        "normal = [0.0, 0.0, 1.0]",
+    );
+    let no_axis = cone.replace("axis = [0.0, 0.0, 1.0]\n", "");
+    refused(
+        &no_axis,
+        "axis",
+        "is required by a cylinder or cone",
+        "shape = \"cone\"",
+    );
+    let roller_angle = HALF_BEND.replace("radius = 3.0e-3", "radius = 3.0e-3\nhalf_angle = 60.0");
+    refused(
+        &roller_angle,
+        "half_angle",
+        "only a cone",
+        "half_angle = 60.0",
+    );
+    let roller_tip = HALF_BEND.replace("radius = 3.0e-3", "radius = 3.0e-3\ntip_radius = 1.0e-3");
+    refused(
+        &roller_tip,
+        "tip_radius",
+        "only a cone",
+        "tip_radius = 1.0e-3",
+    );
+    // Rounded, the tip stays at `point` (it starts just touching the top face).
+    let scene = parse_scene(&with("tip_radius = 0.2e-3"), "rockwell.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert!(matches!(
+        model.effects.walls[0].shape,
+        WallShape::Cone { tip_radius, .. } if tip_radius == 0.2e-3
+    ));
+    // Across the symmetry plane x = 0: its own mirror image only with its axis along the
+    // plane, its tip on it and not sliding across it.
+    let off_plane = cone.replace(
+        "point = [0.0, 2.0e-3, 4.0e-3]",
+        "point = [1.0e-3, 2.0e-3, 4.0e-3]",
+    );
+    refused(
+        &off_plane,
+        "axis",
+        "its tip is off the plane or it moves across it",
+        "axis = [0.0, 0.0, 1.0]",
+    );
+    let across = cone.replace("velocity = [0.0, 0.0, -1.0]", "velocity = [1.0, 0.0, -1.0]");
+    refused(
+        &across,
+        "axis",
+        "its tip is off the plane or it moves across it",
+        "axis = [0.0, 0.0, 1.0]",
+    );
+    // Otherwise it must point away from the plane within 90° − α of its normal, its rounded
+    // tip clear of it: a 30° cone high above the beam along +x, its tip rounded to 1 mm, is
+    // clear with the tip 0.5 mm past the plane (the tip sphere's centre 1.5 mm), not with the
+    // tip 0.5 mm before it; tipped 45° up it is clear, but not with a half-angle of 50°.
+    let aside = |x: &str, axis: &str, half_angle: &str| {
+        cone.replace(
+            cone_lines,
+            &format!("shape = \"cone\"\npoint = [{x}, 2.0e-3, 20.0e-3]\naxis = {axis}\nhalf_angle = {half_angle}\ntip_radius = 1.0e-3\n"),
+        )
+    };
+    parse_scene(&aside("0.5e-3", "[1.0, 0.0, 0.0]", "30.0"), "aside.toml").unwrap();
+    parse_scene(&aside("0.5e-3", "[1.0, 0.0, 1.0]", "30.0"), "tipped.toml").unwrap();
+    for (x, axis, half_angle) in [
+        ("-0.5e-3", "[1.0, 0.0, 0.0]", "30.0"),
+        ("0.5e-3", "[1.0, 0.0, 1.0]", "50.0"),
+        ("0.5e-3", "[-1.0, 0.0, 3.0]", "10.0"),
+    ] {
+        refused(
+            &aside(x, axis, half_angle),
+            "axis",
+            "the cone reaches across the symmetry plane x = 0",
+            &format!("axis = {axis}"),
+        );
+    }
+}
+
+#[test]
+fn a_cone_in_2d_is_a_wedge_that_cannot_spin() {
+    // A 90° wedge (half-angle 45°) under the blocks' floor, pointing down and away from them.
+    let wedge = TWO_BLOCKS.replace("GAP", "10.0e-3").replace(
+        "point = [0.0, 0.0]\nnormal = [0.0, 1.0]",
+        "shape = \"cone\"\npoint = [5.0e-3, -1.0e-3]\naxis = [0.0, -1.0]\nhalf_angle = 45.0",
+    );
+    let scene = parse_scene(&wedge, "wedge.toml").unwrap();
+    let tlsph_io::DimensionModel::Two(model) = &scene.model else {
+        panic!("2D")
+    };
+    assert_eq!(
+        model.effects.walls[0].shape,
+        WallShape::Cone {
+            axis: -tlsph_math::Vector::<2>::y(),
+            half_angle: 45f64.to_radians(),
+            tip_radius: 0.0,
+        }
+    );
+    // Turned up, it opens into the blocks.
+    let into = wedge.replace("axis = [0.0, -1.0]", "axis = [0.0, 1.0]");
+    let e = error_of(&into);
+    assert_eq!(e.field, "wall[floor].point", "{e}");
+    assert!(e.message.contains("starts inside the cone"), "{e}");
+    let spinning = wedge.replace(
+        "half_angle = 45.0",
+        "half_angle = 45.0\nfriction = 0.3\nspin = 5.0",
+    );
+    let e = error_of(&spinning);
+    assert_eq!(e.field, "wall[floor].spin", "{e}");
+    assert!(e.message.contains("only a ball may spin"), "{e}");
 }
