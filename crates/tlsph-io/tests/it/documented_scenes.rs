@@ -41,7 +41,7 @@ fn every_whole_scene_in_the_scene_format_document_reads_and_sets_up() {
         .collect();
     // The complete example, the Taylor bar, the copper plate impact and the others: the count
     // guards the extraction itself.
-    assert!(whole.len() >= 15, "found {} whole scenes", whole.len());
+    assert!(whole.len() >= 17, "found {} whole scenes", whole.len());
     for (k, text) in whole.iter().enumerate() {
         set_up(text, &format!("whole scene {k}"));
     }
