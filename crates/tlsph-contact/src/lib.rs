@@ -17,8 +17,8 @@
 //!   unbounded length (a roller), [`FiniteCylinder`]: a solid cylinder with flat ends (a
 //!   cylindrical punch, a pin), [`RigidBox`]: a rectangle or a rectangular block with sharp
 //!   or rounded edges (a rectangular punch, a die, a step), [`RigidCone`]: a cone (a wedge in
-//!   2D) with a sharp or rounded tip (a conical or wedge indenter), all behind [`WallGeometry`]; and their
-//!   Coulomb friction
+//!   2D) with a sharp or rounded tip (a conical or wedge indenter), all behind
+//!   [`WallGeometry`]; and their Coulomb friction
 //!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
 //!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take
 //!   [`FrictionCoefficients`]: static and kinetic, with an optional exponential decay of the

@@ -164,7 +164,7 @@ pub(crate) struct WallTable {
     /// The radius to which a cone's tip is rounded (none: sharp).
     pub tip_radius: Option<Spanned<f64>>,
     /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
-    /// normal, a cylinder's or a ball's `axis`, z for a ball in 2D \[rad/s\].
+    /// normal, a cylinder's, a cone's or a ball's `axis`, z for a ball in 2D \[rad/s\].
     pub spin: Option<Spanned<f64>>,
     /// Duration of the spin's smooth start-up \[s\].
     pub spin_ramp_time: Option<Spanned<f64>>,

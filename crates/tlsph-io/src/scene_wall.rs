@@ -438,8 +438,8 @@ fn wall_shape<const D: usize>(
 }
 
 /// The wall's angular velocity from `spin` (ω about the wall's own axis, right-handed): along
-/// a plane's or a disc's normal, a cylinder's axis or a 3D ball's `axis`, along z for a 2D
-/// ball. A spin is felt only through friction, and is its own mirror image only about a
+/// a plane's or a disc's normal, a cylinder's or a cone's axis or a 3D ball's `axis`, along z
+/// for a 2D ball. A spin is felt only through friction, and is its own mirror image only about a
 /// symmetry plane's normal.
 #[allow(clippy::too_many_arguments)]
 fn wall_spin<const D: usize>(

@@ -825,8 +825,8 @@ impl<const D: usize> WallShape<D> {
 
     /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its
     /// own axis of symmetry, so the spin moves its surface and not its shape. `Ok(Some(ê))`: a
-    /// plane's or a disc's normal, a cylinder's or a cone's axis (3D), z for a ball in 2D; `Ok(None)`: any
-    /// axis (a ball in 3D); `Err`: this wall cannot spin.
+    /// plane's or a disc's normal, a cylinder's or a cone's axis (3D), z for a ball in 2D;
+    /// `Ok(None)`: any axis (a ball in 3D); `Err`: this wall cannot spin.
     pub fn spin_axis(&self, normal: Vector<D>) -> Result<Option<Vector3>, String> {
         match (D, self) {
             (3, WallShape::Plane | WallShape::Disc { .. }) => {

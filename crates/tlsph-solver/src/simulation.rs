@@ -2424,8 +2424,8 @@ fn contact_pairs<const D: usize>(
 
 /// A wall spins only about an axis of its own symmetry, so that the spin moves its surface and
 /// not its shape (`WallMotion::spin`): ω finite, along a plane's or a disc's normal or a
-/// cylinder's axis, any for a ball; in 2D only a ball spins, about z. The spin is felt only
-/// through friction, so a frictionless wall may not spin.
+/// cylinder's or a cone's axis, any for a ball; in 2D only a ball spins, about z. The spin is
+/// felt only through friction, so a frictionless wall may not spin.
 fn check_spin<const D: usize>(
     shape: &WallShape<D>,
     normal: Vector<D>,
@@ -2443,7 +2443,7 @@ fn check_spin<const D: usize>(
     };
     if omega.cross(&axis).norm() > 1e-12 * omega.norm() {
         return Err(format!(
-            "the spin {omega:?} must be about the wall's own axis {axis:?} (a plane's or a disc's normal, a cylinder's axis; about z in 2D): about any other axis the wall's shape would move"
+            "the spin {omega:?} must be about the wall's own axis {axis:?} (a plane's or a disc's normal, a cylinder's or a cone's axis; about z in 2D): about any other axis the wall's shape would move"
         ));
     }
     Ok(())
