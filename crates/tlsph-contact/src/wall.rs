@@ -72,8 +72,8 @@ pub fn surface_point<const D: usize, G: WallGeometry<D> + ?Sized>(
 /// numerics.md §13 `[C]`). A wall spins only about an axis of its own symmetry (a plane's or a
 /// disc's normal, a cylinder's or a cone's axis, any axis of a ball), so the spin moves its
 /// surface without moving its shape: the contact law is unchanged, and only friction, which
-/// reads the surface velocity, feels it. In 2D `omega` is (0, 0, ω_z) and r lies in the plane; the result's
-/// first D components are returned.
+/// reads the surface velocity, feels it. In 2D `omega` is (0, 0, ω_z) and r lies in the plane;
+/// the result's first D components are returned.
 #[inline]
 pub fn spin_velocity<const D: usize>(omega: &Vector3, offset: &Vector<D>) -> Vector<D> {
     let v = omega.cross(&vector_to_3d(offset));

@@ -858,8 +858,7 @@ pub struct WallMotion<const D: usize> {
     /// Full angular velocity ω \[rad/s\] about an axis through the wall's point, (0, 0, ω_z)
     /// in 2D; `None`: the wall does not spin. Only about an axis of the wall's own symmetry (a
     /// plane's or a disc's normal, a cylinder's or a cone's axis, any axis of a ball; in 2D
-    /// only a ball),
-    /// so the spin moves the wall's surface, which its friction reads
+    /// only a ball), so the spin moves the wall's surface, which its friction reads
     /// (`tlsph_contact::spin_velocity`), and not its shape.
     pub spin: Option<Vector3>,
     /// Time history r(t) of the velocity; `None`: the full velocity from t = 0.
