@@ -1516,7 +1516,7 @@ fn initial_stress_gradient<const D: usize>(
     let components = [&c.xx, &c.yy, &c.zz, &c.xy, &c.yz, &c.xz];
     stress_components_allowed::<D>(ctx, &span, field, &components.map(|x| x.is_some()))?;
     let mut slopes = [[0.0; 6]; D];
-    for (index, (name, values)) in ["xx", "yy", "zz", "xy", "yz", "xz"]
+    for (index, (name, values)) in crate::scene_stress_file::STRESS_COLUMNS
         .iter()
         .zip(components)
         .enumerate()
@@ -1540,32 +1540,36 @@ fn initial_stress_gradient<const D: usize>(
     let gradient = slopes.map(|[xx, yy, zz, xy, yz, xz]| {
         tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
     });
-    within_initial_yield(ctx, &span, field, material, positions, |k| {
-        (
-            tlsph_solver::linear_stress_at(at_origin, &gradient, &positions[k]),
-            String::new(),
-        )
-    })?;
+    within_initial_yield(
+        ctx,
+        &span,
+        field,
+        material,
+        positions,
+        |k| tlsph_solver::linear_stress_at(at_origin, &gradient, &positions[k]),
+        |_| String::new(),
+    )?;
     Ok(gradient)
 }
 
-/// The initial stress of each of `positions` (`stress_of(k)`: the stress of particle k and
-/// where it came from, for the message), each on or inside the initial yield surface of
-/// `material`; the error names the first particle that is not.
+/// Checks that the initial stress `stress_of(k)` of each particle k at `positions` lies on or
+/// inside the initial yield surface of `material`; the error names the first particle that
+/// does not, and where its stress came from (`source(k)`, formatted only then).
+#[allow(clippy::too_many_arguments)]
 fn within_initial_yield<const D: usize>(
     ctx: &Context<'_>,
     span: &Range<usize>,
     field: &str,
     material: &MaterialDescription,
     positions: &[Vector<D>],
-    stress_of: impl Fn(usize) -> (tlsph_math::Tensor3, String),
-) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
-    let mut stresses = Vec::with_capacity(positions.len());
+    stress_of: impl Fn(usize) -> tlsph_math::Tensor3,
+    source: impl Fn(usize) -> String,
+) -> Result<(), SceneError> {
     for (k, x) in positions.iter().enumerate() {
-        let (stress, source) = stress_of(k);
         if let Some((equivalent, yield_stress)) =
-            material.model.outside_initial_yield_surface(&stress)
+            material.model.outside_initial_yield_surface(&stress_of(k))
         {
+            let source = source(k);
             return Err(ctx.error(
                 span,
                 field,
@@ -1576,9 +1580,8 @@ fn within_initial_yield<const D: usize>(
                 ),
             ));
         }
-        stresses.push(stress);
     }
-    Ok(stresses)
+    Ok(())
 }
 
 /// The stress of each particle from `initial_stress_file`: the CSV table at `path` (relative
@@ -1613,13 +1616,20 @@ fn initial_stress_file<const D: usize>(
             )
         },
     )?;
-    within_initial_yield(ctx, &table.span(), field, material, positions, |k| {
-        let sample = nearest[k];
-        (
-            samples.stresses[sample],
-            format!(" (line {} of `{}`)", samples.lines[sample], path.display()),
-        )
-    })
+    let stresses: Vec<tlsph_math::Tensor3> = nearest.iter().map(|&s| samples.stresses[s]).collect();
+    within_initial_yield(
+        ctx,
+        &table.span(),
+        field,
+        material,
+        positions,
+        |k| stresses[k],
+        |k| {
+            let line = samples.lines[nearest[k]];
+            format!(" (line {line} of `{}`)", path.display())
+        },
+    )?;
+    Ok(stresses)
 }
 
 /// Which stress components a D-dimensional scene may set (`given`: xx, yy, zz, xy, yz, xz):
