@@ -8,7 +8,9 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
-use tlsph_io::{load_scene, run_scene_to_dir, write_csv, RunError};
+use tlsph_io::{
+    load_scene, load_scene_without_field_tables, run_scene_to_dir, write_csv, RunError,
+};
 
 #[derive(Parser)]
 #[command(
@@ -40,7 +42,8 @@ enum Command {
         scene: PathBuf,
     },
     /// Write a body's reference particle positions as CSV (header `x,y,z`, the first D of them;
-    /// one row per particle), the template of an `initial_stress_file` table.
+    /// one row per particle), the template of an `initial_stress_file` or
+    /// `initial_velocity_file` table (the scene's own tables are not read: they need not exist).
     Particles {
         /// Scene file.
         scene: PathBuf,
@@ -87,7 +90,8 @@ fn main() -> ExitCode {
 }
 
 fn particles(path: PathBuf, body: &str, output: PathBuf) -> ExitCode {
-    let scene = match load_scene(&path) {
+    // The template is written before its table exists, so the scene's tables are not read.
+    let scene = match load_scene_without_field_tables(&path) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");

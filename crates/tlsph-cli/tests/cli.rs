@@ -235,18 +235,41 @@ fn particles_writes_a_bodys_positions_as_a_stress_table_template() {
         let x: f64 = line.parse().unwrap();
         assert!((x - 0.01 * (k as f64 + 0.5)).abs() < 1e-12, "{k}: {x}");
     }
-    // The table with a stress column added is a valid `initial_stress_file`.
-    let stressed: String = std::iter::once("x,xx".to_string())
-        .chain(lines[1..].iter().map(|x| format!("{x},1e-3")))
-        .collect::<Vec<_>>()
-        .join("\n");
-    fs::write(tmp.path().join("stress.csv"), stressed).unwrap();
+    // A scene that already names its table writes the same template before the table exists,
+    // though the scene cannot be checked without it.
     let with_file = SCENE.replace(
         "spacing = 0.01\n",
         "spacing = 0.01\ninitial_stress_file = { path = \"stress.csv\" }\n",
     );
     assert_ne!(with_file, SCENE);
     fs::write(tmp.path().join("stressed.toml"), with_file).unwrap();
+    let out = tlsph()
+        .current_dir(tmp.path())
+        .args(["particles", "stressed.toml", "target", "template.csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    assert_eq!(
+        fs::read_to_string(tmp.path().join("template.csv")).unwrap(),
+        table
+    );
+    let out = tlsph()
+        .arg("check")
+        .arg(tmp.path().join("stressed.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("cannot read `") && stderr.contains("stress.csv"),
+        "{stderr}"
+    );
+    // The table with a stress column added is a valid `initial_stress_file`.
+    let stressed: String = std::iter::once("x,xx".to_string())
+        .chain(lines[1..].iter().map(|x| format!("{x},1e-3")))
+        .collect::<Vec<_>>()
+        .join("\n");
+    fs::write(tmp.path().join("stress.csv"), stressed).unwrap();
     let out = tlsph()
         .arg("check")
         .arg(tmp.path().join("stressed.toml"))

@@ -7,9 +7,9 @@ pub mod particle_map;
 pub mod plot;
 mod run;
 mod scene;
+mod scene_field_file;
 mod scene_file;
 mod scene_material;
-mod scene_stress_file;
 mod scene_wall;
 pub mod vtk;
 
@@ -20,5 +20,6 @@ pub use run::{
     write_csv, FrameSink, Intervals, ProbeHistory, Progress, RunError, RunRecord,
 };
 pub use scene::{
-    load_scene, parse_scene, DimensionModel, OutputSpec, ProbeSpec, Scene, SceneError,
+    load_scene, load_scene_without_field_tables, parse_scene, DimensionModel, OutputSpec,
+    ProbeSpec, Scene, SceneError,
 };

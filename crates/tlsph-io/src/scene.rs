@@ -2,9 +2,10 @@
 //! it into a solver `Model`. Every error names the file, line, column and field.
 
 use crate::geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape};
+use crate::scene_field_file::FieldSamples;
 use crate::scene_file::{
-    BodyTable, BoundaryTable, ProbeTable, SceneFile, ShapeTable, StabilityTable, StressComponents,
-    StressFileTable, StressGradients,
+    BodyTable, BoundaryTable, FieldFileTable, ProbeTable, SceneFile, ShapeTable, StabilityTable,
+    StressComponents, StressGradients,
 };
 use crate::scene_wall::build_wall;
 use std::fmt;
@@ -172,6 +173,19 @@ impl Scene {
 /// Reads and checks a scene file.
 /// Files the scene names (an `initial_stress_file`) are read relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    load_scene_reading(path, true)
+}
+
+/// Reads and checks a scene file like [`load_scene`] but leaves out the tables of initial
+/// fields (`initial_stress_file`, `initial_velocity_file`): the bodies start as if those keys
+/// were absent. The particles do not depend on the tables, so this is how the template of a
+/// table (`tlsph particles`) is written before the table exists.
+pub fn load_scene_without_field_tables(path: &Path) -> Result<Scene, SceneError> {
+    load_scene_reading(path, false)
+}
+
+/// [`load_scene`], reading the tables of initial fields or not.
+fn load_scene_reading(path: &Path, read_field_tables: bool) -> Result<Scene, SceneError> {
     let origin = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| SceneError {
         file: origin.clone(),
@@ -181,21 +195,28 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
         message: format!("cannot read the file: {e}"),
     })?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    parse_scene_in(&text, &origin, folder)
+    parse_scene_in(&text, &origin, folder, read_field_tables)
 }
 
 /// Parses and checks scene text; `origin` names it in errors. Files the scene names are read
 /// relative to the working directory.
 pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
-    parse_scene_in(text, origin, Path::new(""))
+    parse_scene_in(text, origin, Path::new(""), true)
 }
 
-/// Parses and checks scene text whose relative file names are relative to `folder`.
-fn parse_scene_in(text: &str, origin: &str, folder: &Path) -> Result<Scene, SceneError> {
+/// Parses and checks scene text whose relative file names are relative to `folder`, reading
+/// the tables of initial fields if `read_field_tables`.
+fn parse_scene_in(
+    text: &str,
+    origin: &str,
+    folder: &Path,
+    read_field_tables: bool,
+) -> Result<Scene, SceneError> {
     let ctx = Context {
         text,
         origin,
         folder,
+        read_field_tables,
     };
     let file: SceneFile = toml::from_str(text).map_err(|e| {
         let (line, column) = match e.span() {
@@ -231,6 +252,9 @@ pub(crate) struct Context<'a> {
     origin: &'a str,
     /// Folder that relative file names in the scene are relative to.
     folder: &'a Path,
+    /// Whether `initial_stress_file` and `initial_velocity_file` tables are read (or the keys
+    /// left out, for [`load_scene_without_field_tables`]).
+    read_field_tables: bool,
 }
 
 impl Context<'_> {
@@ -1409,6 +1433,22 @@ fn build_body<const D: usize>(
         &mut velocities,
         &mut volumes,
     )?;
+    if let Some(t) = b
+        .initial_velocity_file
+        .as_ref()
+        .filter(|_| ctx.read_field_tables)
+    {
+        velocities = initial_velocity_file::<D>(
+            ctx,
+            t,
+            &field("initial_velocity_file"),
+            &shapes,
+            materials[material].density,
+            spacing,
+            &positions,
+            &volumes,
+        )?;
+    }
     let initial_stress = match &b.initial_stress {
         Some(t) => Some(initial_stress::<D>(
             ctx,
@@ -1429,7 +1469,11 @@ fn build_body<const D: usize>(
         )?),
         None => None,
     };
-    let initial_stresses = match &b.initial_stress_file {
+    let initial_stresses = match b
+        .initial_stress_file
+        .as_ref()
+        .filter(|_| ctx.read_field_tables)
+    {
         Some(t) => {
             let other = b.initial_stress.as_ref().map(|_| "initial_stress").or(b
                 .initial_stress_gradient
@@ -1516,7 +1560,7 @@ fn initial_stress_gradient<const D: usize>(
     let components = [&c.xx, &c.yy, &c.zz, &c.xy, &c.yz, &c.xz];
     stress_components_allowed::<D>(ctx, &span, field, &components.map(|x| x.is_some()))?;
     let mut slopes = [[0.0; 6]; D];
-    for (index, (name, values)) in crate::scene_stress_file::STRESS_COLUMNS
+    for (index, (name, values)) in crate::scene_field_file::STRESS_COLUMNS
         .iter()
         .zip(components)
         .enumerate()
@@ -1591,32 +1635,31 @@ fn within_initial_yield<const D: usize>(
 /// error names the first that is not, and the line of its sample).
 fn initial_stress_file<const D: usize>(
     ctx: &Context<'_>,
-    table: &Spanned<StressFileTable>,
+    table: &Spanned<FieldFileTable>,
     field: &str,
     material: &MaterialDescription,
     spacing: f64,
     positions: &[Vector<D>],
 ) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
-    let t = table.get_ref();
-    let reach = match &t.reach {
-        Some(r) => ctx.positive(r, &format!("{field}.reach"))?,
-        None => spacing,
-    };
-    let path = ctx.folder.join(t.path.get_ref());
-    let samples = crate::scene_stress_file::read_stress_samples::<D>(&path)
-        .map_err(|message| ctx.error(&t.path.span(), &format!("{field}.path"), message))?;
-    stress_components_allowed::<D>(ctx, &table.span(), field, &samples.given)?;
-    stress_is_not_state(ctx, &table.span(), field, material)?;
-    let nearest = crate::scene_stress_file::nearest_samples(&samples, positions, reach).map_err(
-        |message| {
-            ctx.error(
-                &table.span(),
-                field,
-                format!("`{}`: {message}", path.display()),
-            )
+    let (samples, nearest, path) = mapped_field_table(
+        ctx,
+        table,
+        field,
+        &crate::scene_field_file::STRESS_COLUMNS,
+        spacing,
+        positions,
+        |given| {
+            stress_components_allowed::<D>(ctx, &table.span(), field, given)?;
+            stress_is_not_state(ctx, &table.span(), field, material)
         },
     )?;
-    let stresses: Vec<tlsph_math::Tensor3> = nearest.iter().map(|&s| samples.stresses[s]).collect();
+    let stresses: Vec<tlsph_math::Tensor3> = nearest
+        .iter()
+        .map(|&s| {
+            let [xx, yy, zz, xy, yz, xz] = samples.values[s];
+            tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+        })
+        .collect();
     within_initial_yield(
         ctx,
         &table.span(),
@@ -1630,6 +1673,105 @@ fn initial_stress_file<const D: usize>(
         },
     )?;
     Ok(stresses)
+}
+
+/// Reads the table of a field-table key (`{ path, reach }`) with the given component
+/// `columns`, checks which components it gives (`check_given`, before the mapping), and maps
+/// it to the particles at `positions`: for each particle the index of its nearest sample
+/// within `reach` (default: the body's `spacing`). Returns the samples, those indices and the
+/// table's path (relative to the scene's folder).
+fn mapped_field_table<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<FieldFileTable>,
+    field: &str,
+    columns: &[&str],
+    spacing: f64,
+    positions: &[Vector<D>],
+    check_given: impl FnOnce(&[bool; 6]) -> Result<(), SceneError>,
+) -> Result<(FieldSamples<D>, Vec<usize>, PathBuf), SceneError> {
+    let t = table.get_ref();
+    let reach = match &t.reach {
+        Some(r) => ctx.positive(r, &format!("{field}.reach"))?,
+        None => spacing,
+    };
+    let path = ctx.folder.join(t.path.get_ref());
+    let samples = crate::scene_field_file::read_field_samples::<D>(&path, columns)
+        .map_err(|message| ctx.error(&t.path.span(), &format!("{field}.path"), message))?;
+    check_given(&samples.given)?;
+    let nearest = crate::scene_field_file::nearest_samples(&samples, positions, reach).map_err(
+        |message| {
+            ctx.error(
+                &table.span(),
+                field,
+                format!("`{}`: {message}", path.display()),
+            )
+        },
+    )?;
+    Ok((samples, nearest, path))
+}
+
+/// The velocity of each particle from `initial_velocity_file`: the CSV table at `path`
+/// (relative to the scene's folder) with columns `vx`, `vy`, `vz` (the first D; absent ones 0),
+/// each particle given the velocity of its nearest sample within `reach` (default: the body's
+/// `spacing`). It replaces the velocity keys of the body's `shapes`, so none may be declared;
+/// every particle's kinetic energy ½ρV|v|² must be finite (the error names the particle and
+/// the line of its sample).
+#[allow(clippy::too_many_arguments)]
+fn initial_velocity_file<const D: usize>(
+    ctx: &Context<'_>,
+    table: &Spanned<FieldFileTable>,
+    field: &str,
+    shapes: &[&ShapeTable],
+    density: f64,
+    spacing: f64,
+    positions: &[Vector<D>],
+    volumes: &[f64],
+) -> Result<Vec<Vector<D>>, SceneError> {
+    let declared = shapes.iter().find_map(|s| {
+        (s.velocity.as_ref().map(|_| "velocity"))
+            .or(s.velocity_gradient.as_ref().map(|_| "velocity_gradient"))
+            .or(s.velocity_origin.as_ref().map(|_| "velocity_origin"))
+    });
+    if let Some(key) = declared {
+        return Err(ctx.error(
+            &table.span(),
+            field,
+            format!("gives the whole initial velocity field, so no shape of the body can declare `{key}`"),
+        ));
+    }
+    let (samples, nearest, path) = mapped_field_table(
+        ctx,
+        table,
+        field,
+        &crate::scene_field_file::VELOCITY_COLUMNS[..D],
+        spacing,
+        positions,
+        |_| Ok(()),
+    )?;
+    let velocities: Vec<Vector<D>> = nearest
+        .iter()
+        .map(|&s| Vector::<D>::from_fn(|i, _| samples.values[s][i]))
+        .collect();
+    for (k, v) in velocities.iter().enumerate() {
+        if let Err(message) = tlsph_solver::check_kinetic_energy(&[*v], &volumes[k..k + 1], density)
+        {
+            let message = message.trim_start_matches("particle 0: ");
+            return Err(ctx.error(
+                &table.span(),
+                field,
+                format!(
+                    "particle {k} at [{}] (line {} of `{}`): {message}",
+                    point_text(&positions[k]),
+                    samples.lines[nearest[k]],
+                    path.display()
+                ),
+            ));
+        }
+    }
+    if let Err(message) = tlsph_solver::check_kinetic_energy(&velocities, volumes, density) {
+        return Err(ctx.error(&table.span(), field, message));
+    }
+    Ok(velocities)
 }
 
 /// Which stress components a D-dimensional scene may set (`given`: xx, yy, zz, xy, yz, xz):

@@ -302,15 +302,18 @@ pub(crate) struct BodyTable {
     /// Gradient of the initial stress: per component, its derivatives along x, y, z.
     pub initial_stress_gradient: Option<Spanned<StressGradients>>,
     /// An initial stress field read from a CSV file of sample points.
-    pub initial_stress_file: Option<Spanned<StressFileTable>>,
+    pub initial_stress_file: Option<Spanned<FieldFileTable>>,
+    /// An initial velocity field read from a CSV file of sample points.
+    pub initial_velocity_file: Option<Spanned<FieldFileTable>>,
 }
 
-/// `initial_stress_file = { path = "residual.csv", reach = 2e-3 }`: the table to read
+/// `initial_stress_file = { path = "residual.csv", reach = 2e-3 }` (or
+/// `initial_velocity_file`): the table to read
 /// (relative to the scene file's folder) and how far a particle's nearest sample may lie
 /// (default: the body's spacing).
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct StressFileTable {
+pub(crate) struct FieldFileTable {
     pub path: Spanned<String>,
     pub reach: Option<Spanned<f64>>,
 }

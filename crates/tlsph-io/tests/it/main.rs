@@ -17,6 +17,7 @@ mod materials;
 mod overview;
 mod placement;
 mod stress_file;
+mod velocity_file;
 mod wall_friction;
 
 /// The scene shape of the foundation issue (R-P2 at a coarse spacing).

@@ -211,6 +211,13 @@ fn stress_file_errors_name_the_file_line_and_field() {
         (key, "x, yy\n0.0, 1.0\n", "path", "no column `y`"),
         (key, "x, y, pressure\n", "path", "unknown column `pressure`"),
         (key, "x, y, yy, yy\n", "path", "appears twice"),
+        // The template `tlsph particles` writes, before a stress column is added.
+        (
+            key,
+            "x,y\n0.025,0.025\n",
+            "path",
+            "names no field column; give at least one of xx, yy, zz, xy, yz, xz",
+        ),
         (key, "x, y, yy\n", "path", "no sample rows"),
         (
             key,

@@ -1,34 +1,42 @@
-//! `initial_stress_file`: an initial Cauchy stress field read from a CSV table of sample points
-//! and given to each particle from its nearest sample (ours, not in the theses, which start
-//! from rest or from a uniform stress). Typical sources: a residual stress computed by another
-//! code, or a field measured on a grid.
+//! Initial fields read from CSV tables of sample points (`initial_stress_file`,
+//! `initial_velocity_file`), each particle given the values of its nearest sample (ours, not in
+//! the theses, which start from rest or from uniform or linear fields). Typical sources: a
+//! residual stress or a velocity field computed by another code, or a field measured on a grid.
 
 use std::path::Path;
-use tlsph_math::{Tensor3, Vector};
+use tlsph_math::Vector;
 use tlsph_neighbours::CellGrid;
 
 /// Stress columns in the order of a `[xx, yy, zz, xy, yz, xz]` component array.
 pub(crate) const STRESS_COLUMNS: [&str; 6] = ["xx", "yy", "zz", "xy", "yz", "xz"];
 
-/// The sample points of a stress file and the (symmetric) stress at each.
+/// Velocity columns in the order of a velocity vector's components.
+pub(crate) const VELOCITY_COLUMNS: [&str; 3] = ["vx", "vy", "vz"];
+
+/// The sample points of a field table and the field's components at each.
 #[derive(Debug, Clone)]
-pub(crate) struct StressSamples<const D: usize> {
+pub(crate) struct FieldSamples<const D: usize> {
     /// Sample positions X (reference configuration) \[length\].
     pub points: Vec<Vector<D>>,
-    /// Cauchy stress at each sample (tension positive; absent components 0) \[stress\].
-    pub stresses: Vec<Tensor3>,
+    /// The components at each sample, in the order of the reader's component names (absent
+    /// components 0; entries past the number of names unused).
+    pub values: Vec<[f64; 6]>,
     /// 1-based line of each sample in the file, for messages.
     pub lines: Vec<u64>,
-    /// Which of the components `xx, yy, zz, xy, yz, xz` the header names.
+    /// Which of the component names the header names.
     pub given: [bool; 6],
 }
 
-/// Reads a stress table: a header naming the coordinates `x`, `y`, `z` (the first D, all
-/// required) and any of the components `xx, yy, zz, xy, yz, xz`, in any order, then one row of
-/// numbers per sample, separated by commas. Blank lines and lines starting with `#` are
+/// Reads a field table: a header naming the coordinates `x`, `y`, `z` (the first D, all
+/// required) and at least one of `components` (at most six names), in any order, then one row
+/// of numbers per sample, separated by commas. Blank lines and lines starting with `#` are
 /// skipped; cells may be padded with spaces. Errors name the file and, for a bad row, its line
 /// (counting every line of the file).
-pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressSamples<D>, String> {
+pub(crate) fn read_field_samples<const D: usize>(
+    path: &Path,
+    components: &[&str],
+) -> Result<FieldSamples<D>, String> {
+    debug_assert!(components.len() <= 6);
     let shown = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read `{shown}`: {e}"))?;
     let mut lines = (1u64..).zip(text.lines()).filter(|(_, l)| {
@@ -39,20 +47,21 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
         return Err(format!("`{shown}` has no header line"));
     };
     let coordinates = &["x", "y", "z"][..D];
-    // For each column: Ok(axis) for a coordinate, Err(component) for a stress component.
+    // For each column: Ok(axis) for a coordinate, Err(component) for a field component.
     let mut columns: Vec<Result<usize, usize>> = Vec::new();
     for name in header.split(',').map(str::trim) {
         let column = match (
             coordinates.iter().position(|c| *c == name),
-            STRESS_COLUMNS.iter().position(|c| *c == name),
+            components.iter().position(|c| *c == name),
         ) {
             (Some(axis), _) => Ok(axis),
             (None, Some(component)) => Err(component),
             (None, None) => {
                 return Err(format!(
-                    "`{shown}`: unknown column `{name}` in the header; use {} and stress components among xx, yy, zz, xy, yz, xz",
-                    coordinates.join(", ")
-                ))
+                "`{shown}`: unknown column `{name}` in the header; use {} and components among {}",
+                coordinates.join(", "),
+                components.join(", ")
+            ))
             }
         };
         if columns.contains(&column) {
@@ -70,9 +79,15 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
         ));
     }
     let given = std::array::from_fn(|c| columns.contains(&Err(c)));
-    let mut samples = StressSamples {
+    if !given.contains(&true) {
+        return Err(format!(
+            "`{shown}`: the header names no field column; give at least one of {}",
+            components.join(", ")
+        ));
+    }
+    let mut samples = FieldSamples {
         points: Vec::new(),
-        stresses: Vec::new(),
+        values: Vec::new(),
         lines: Vec::new(),
         given,
     };
@@ -86,13 +101,13 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
             ));
         }
         let mut point = Vector::<D>::zeros();
-        let mut components = [0.0; 6];
+        let mut values = [0.0; 6];
         for (cell, column) in cells.iter().zip(&columns) {
             let value = cell.parse::<f64>().ok().filter(|v| v.is_finite());
             let Some(value) = value else {
                 let name = match column {
                     Ok(axis) => coordinates[*axis],
-                    Err(component) => STRESS_COLUMNS[*component],
+                    Err(component) => components[*component],
                 };
                 return Err(format!(
                     "`{shown}` line {line}: `{name}` must be a finite number, got `{cell}`"
@@ -100,14 +115,11 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
             };
             match column {
                 Ok(axis) => point[*axis] = value,
-                Err(component) => components[*component] = value,
+                Err(component) => values[*component] = value,
             }
         }
-        let [xx, yy, zz, xy, yz, xz] = components;
         samples.points.push(point);
-        samples
-            .stresses
-            .push(Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz));
+        samples.values.push(values);
         samples.lines.push(line);
     }
     if samples.points.is_empty() {
@@ -120,7 +132,7 @@ pub(crate) fn read_stress_samples<const D: usize>(path: &Path) -> Result<StressS
 /// equally near ones), which must lie within `reach`. The error names the first particle with
 /// no sample that near and how far its nearest sample is.
 pub(crate) fn nearest_samples<const D: usize>(
-    samples: &StressSamples<D>,
+    samples: &FieldSamples<D>,
     positions: &[Vector<D>],
     reach: f64,
 ) -> Result<Vec<usize>, String> {
@@ -158,10 +170,13 @@ pub(crate) fn nearest_samples<const D: usize>(
 mod tests {
     use super::*;
 
-    fn samples_1d(points: &[f64]) -> StressSamples<1> {
-        StressSamples {
+    fn samples_1d(points: &[f64]) -> FieldSamples<1> {
+        FieldSamples {
             points: points.iter().map(|x| Vector::<1>::new(*x)).collect(),
-            stresses: points.iter().map(|x| Tensor3::identity() * *x).collect(),
+            values: points
+                .iter()
+                .map(|x| [*x, 0.0, 0.0, 0.0, 0.0, 0.0])
+                .collect(),
             lines: (2..).take(points.len()).collect(),
             given: [true, false, false, false, false, false],
         }
