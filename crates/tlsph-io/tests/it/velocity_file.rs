@@ -225,12 +225,27 @@ fn a_velocity_file_works_with_body_shape_tables_and_cuts() {
             format!("{x}, {}\n", 0.1 * x)
         })
         .collect();
-    let model = model_1d(load_with_table(dir.path(), &scene, &format!("x, vx\n{rows}")).unwrap());
+    let table = format!("x, vx\n{rows}");
+    let model = model_1d(load_with_table(dir.path(), &scene, &table).unwrap());
     let body = &model.bodies[0];
     assert_eq!(body.positions.len(), 80);
     for (x, v) in body.positions.iter().zip(&body.velocities) {
         assert!((v.x - 0.1 * x.x).abs() < 1e-15, "{} at {}", v.x, x.x);
     }
+    // A velocity inside one of the shape tables is refused too.
+    let with_velocity = scene.replacen(
+        "box = { min = [0.5], max = [1.0] }\n",
+        "box = { min = [0.5], max = [1.0] }\nvelocity = [0.2]\n",
+        1,
+    );
+    assert_ne!(with_velocity, scene);
+    let e = load_with_table(dir.path(), &with_velocity, &table).unwrap_err();
+    assert_eq!(e.field, "body[rod].initial_velocity_file", "{e}");
+    assert!(
+        e.message
+            .contains("no shape of the body can declare `velocity`"),
+        "{e}"
+    );
 }
 
 #[test]
