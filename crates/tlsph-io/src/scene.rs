@@ -1680,22 +1680,22 @@ fn initial_stress_file<const D: usize>(
 /// it to the particles at `positions`: for each particle the index of its nearest sample
 /// within `reach` (default: the body's `spacing`). Returns the samples, those indices and the
 /// table's path (relative to the scene's folder).
-fn mapped_field_table<const D: usize>(
+fn mapped_field_table<const D: usize, const N: usize>(
     ctx: &Context<'_>,
     table: &Spanned<FieldFileTable>,
     field: &str,
-    columns: &[&str],
+    columns: &[&str; N],
     spacing: f64,
     positions: &[Vector<D>],
-    check_given: impl FnOnce(&[bool; 6]) -> Result<(), SceneError>,
-) -> Result<(FieldSamples<D>, Vec<usize>, PathBuf), SceneError> {
+    check_given: impl FnOnce(&[bool; N]) -> Result<(), SceneError>,
+) -> Result<(FieldSamples<D, N>, Vec<usize>, PathBuf), SceneError> {
     let t = table.get_ref();
     let reach = match &t.reach {
         Some(r) => ctx.positive(r, &format!("{field}.reach"))?,
         None => spacing,
     };
     let path = ctx.folder.join(t.path.get_ref());
-    let samples = crate::scene_field_file::read_field_samples::<D>(&path, columns)
+    let samples = crate::scene_field_file::read_field_samples::<D, N>(&path, columns)
         .map_err(|message| ctx.error(&t.path.span(), &format!("{field}.path"), message))?;
     check_given(&samples.given)?;
     let nearest = crate::scene_field_file::nearest_samples(&samples, positions, reach).map_err(
@@ -1743,14 +1743,14 @@ fn initial_velocity_file<const D: usize>(
         ctx,
         table,
         field,
-        &crate::scene_field_file::VELOCITY_COLUMNS[..D],
+        &std::array::from_fn::<_, D, _>(|i| crate::scene_field_file::VELOCITY_COLUMNS[i]),
         spacing,
         positions,
         |_| Ok(()),
     )?;
     let velocities: Vec<Vector<D>> = nearest
         .iter()
-        .map(|&s| Vector::<D>::from_fn(|i, _| samples.values[s][i]))
+        .map(|&s| Vector::<D>::from(samples.values[s]))
         .collect();
     for (k, v) in velocities.iter().enumerate() {
         if let Err(message) = tlsph_solver::check_kinetic_energy(&[*v], &volumes[k..k + 1], density)

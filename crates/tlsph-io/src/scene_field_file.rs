@@ -13,30 +13,29 @@ pub(crate) const STRESS_COLUMNS: [&str; 6] = ["xx", "yy", "zz", "xy", "yz", "xz"
 /// Velocity columns in the order of a velocity vector's components.
 pub(crate) const VELOCITY_COLUMNS: [&str; 3] = ["vx", "vy", "vz"];
 
-/// The sample points of a field table and the field's components at each.
+/// The sample points of a field table and the field's N components at each.
 #[derive(Debug, Clone)]
-pub(crate) struct FieldSamples<const D: usize> {
+pub(crate) struct FieldSamples<const D: usize, const N: usize> {
     /// Sample positions X (reference configuration) \[length\].
     pub points: Vec<Vector<D>>,
     /// The components at each sample, in the order of the reader's component names (absent
-    /// components 0; entries past the number of names unused).
-    pub values: Vec<[f64; 6]>,
+    /// components 0).
+    pub values: Vec<[f64; N]>,
     /// 1-based line of each sample in the file, for messages.
     pub lines: Vec<u64>,
     /// Which of the component names the header names.
-    pub given: [bool; 6],
+    pub given: [bool; N],
 }
 
 /// Reads a field table: a header naming the coordinates `x`, `y`, `z` (the first D, all
-/// required) and at least one of `components` (at most six names), in any order, then one row
+/// required) and at least one of `components`, in any order, then one row
 /// of numbers per sample, separated by commas. Blank lines and lines starting with `#` are
 /// skipped; cells may be padded with spaces. Errors name the file and, for a bad row, its line
 /// (counting every line of the file).
-pub(crate) fn read_field_samples<const D: usize>(
+pub(crate) fn read_field_samples<const D: usize, const N: usize>(
     path: &Path,
-    components: &[&str],
-) -> Result<FieldSamples<D>, String> {
-    debug_assert!(components.len() <= 6);
+    components: &[&str; N],
+) -> Result<FieldSamples<D, N>, String> {
     let shown = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read `{shown}`: {e}"))?;
     let mut lines = (1u64..).zip(text.lines()).filter(|(_, l)| {
@@ -101,7 +100,7 @@ pub(crate) fn read_field_samples<const D: usize>(
             ));
         }
         let mut point = Vector::<D>::zeros();
-        let mut values = [0.0; 6];
+        let mut values = [0.0; N];
         for (cell, column) in cells.iter().zip(&columns) {
             let value = cell.parse::<f64>().ok().filter(|v| v.is_finite());
             let Some(value) = value else {
@@ -131,8 +130,8 @@ pub(crate) fn read_field_samples<const D: usize>(
 /// For each of `positions`, the index of the nearest sample (the first in file order among
 /// equally near ones), which must lie within `reach`. The error names the first particle with
 /// no sample that near and how far its nearest sample is.
-pub(crate) fn nearest_samples<const D: usize>(
-    samples: &FieldSamples<D>,
+pub(crate) fn nearest_samples<const D: usize, const N: usize>(
+    samples: &FieldSamples<D, N>,
     positions: &[Vector<D>],
     reach: f64,
 ) -> Result<Vec<usize>, String> {
@@ -170,15 +169,12 @@ pub(crate) fn nearest_samples<const D: usize>(
 mod tests {
     use super::*;
 
-    fn samples_1d(points: &[f64]) -> FieldSamples<1> {
+    fn samples_1d(points: &[f64]) -> FieldSamples<1, 1> {
         FieldSamples {
             points: points.iter().map(|x| Vector::<1>::new(*x)).collect(),
-            values: points
-                .iter()
-                .map(|x| [*x, 0.0, 0.0, 0.0, 0.0, 0.0])
-                .collect(),
+            values: points.iter().map(|x| [*x]).collect(),
             lines: (2..).take(points.len()).collect(),
-            given: [true, false, false, false, false, false],
+            given: [true],
         }
     }
 
