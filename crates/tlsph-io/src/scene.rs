@@ -129,8 +129,8 @@ impl Scene {
     }
 
     /// Reference positions of the particles of the body named `body`, in particle order, each
-    /// as its D coordinates (the rows of an `initial_stress_file` template); `None` if no body
-    /// has that name.
+    /// as its D coordinates (the rows of an `initial_stress_file` or `initial_velocity_file`
+    /// template); `None` if no body has that name.
     pub fn body_positions(&self, body: &str) -> Option<Vec<Vec<f64>>> {
         fn rows<const D: usize>(m: &Model<D>, body: &str) -> Option<Vec<Vec<f64>>> {
             let b = m.bodies.iter().find(|b| b.name == body)?;
@@ -171,7 +171,8 @@ impl Scene {
 }
 
 /// Reads and checks a scene file.
-/// Files the scene names (an `initial_stress_file`) are read relative to its folder.
+/// Files the scene names (an `initial_stress_file` or `initial_velocity_file`) are read
+/// relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     load_scene_reading(path, true)
 }
