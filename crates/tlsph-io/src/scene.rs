@@ -1753,24 +1753,32 @@ fn initial_velocity_file<const D: usize>(
         .iter()
         .map(|&s| Vector::<D>::from(samples.values[s]))
         .collect();
+    // One pass: each particle's energy is checked (to name it and its line) and summed.
+    let mut total = 0.0;
     for (k, v) in velocities.iter().enumerate() {
-        if let Err(message) = tlsph_solver::check_kinetic_energy(&[*v], &volumes[k..k + 1], density)
-        {
-            let message = message.trim_start_matches("particle 0: ");
-            return Err(ctx.error(
-                &table.span(),
-                field,
-                format!(
-                    "particle {k} at [{}] (line {} of `{}`): {message}",
-                    point_text(&positions[k]),
-                    samples.lines[nearest[k]],
-                    path.display()
-                ),
-            ));
+        match tlsph_solver::check_kinetic_energy(&[*v], &volumes[k..k + 1], density) {
+            Ok(energy) => total += energy,
+            Err(message) => {
+                let message = message.trim_start_matches("particle 0: ");
+                return Err(ctx.error(
+                    &table.span(),
+                    field,
+                    format!(
+                        "particle {k} at [{}] (line {} of `{}`): {message}",
+                        point_text(&positions[k]),
+                        samples.lines[nearest[k]],
+                        path.display()
+                    ),
+                ));
+            }
         }
     }
-    if let Err(message) = tlsph_solver::check_kinetic_energy(&velocities, volumes, density) {
-        return Err(ctx.error(&table.span(), field, message));
+    if !total.is_finite() {
+        return Err(ctx.error(
+            &table.span(),
+            field,
+            "the body's kinetic energy is not a finite number".into(),
+        ));
     }
     Ok(velocities)
 }

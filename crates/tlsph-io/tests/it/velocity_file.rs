@@ -203,6 +203,19 @@ fn velocity_file_errors_name_the_file_line_and_field() {
         e.message.contains("particle 0 at [0.005] (line 3 of `"),
         "{e}"
     );
+    // With ρ = 20, each particle's ½ρV|v|² = ½ × 20 × 0.01 × 1e308 = 1e307 is finite; the
+    // sum over the rod's 100 particles is not.
+    let large: String = (0..100)
+        .map(|k| format!("{}, 1e154\n", 0.005 + 0.01 * k as f64))
+        .collect();
+    let dense = rod(KEY).replace("density = 1.0", "density = 20.0");
+    let e = load_with_table(dir.path(), &dense, &format!("x, vx\n{large}")).unwrap_err();
+    assert_eq!(e.field, "body[rod].initial_velocity_file", "{e}");
+    assert!(
+        e.message
+            .contains("the body's kinetic energy is not a finite number"),
+        "{e}"
+    );
 }
 
 #[test]
