@@ -2,7 +2,7 @@
 //! it into a solver `Model`. Every error names the file, line, column and field.
 
 use crate::geometry::{fill_shape, hole_rings, sampled_cell_volumes, Shape};
-use crate::scene_field_file::FieldSamples;
+use crate::scene_field_file::{FieldSamples, Interpolation, SampleMapping};
 use crate::scene_file::{
     BodyTable, BoundaryTable, FieldFileTable, ProbeTable, SceneFile, ShapeTable, StabilityTable,
     StressComponents, StressGradients,
@@ -1642,7 +1642,7 @@ fn initial_stress_file<const D: usize>(
     spacing: f64,
     positions: &[Vector<D>],
 ) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
-    let (samples, nearest, path) = mapped_field_table(
+    let (samples, mapping, path) = mapped_field_table(
         ctx,
         table,
         field,
@@ -1654,10 +1654,9 @@ fn initial_stress_file<const D: usize>(
             stress_is_not_state(ctx, &table.span(), field, material)
         },
     )?;
-    let stresses: Vec<tlsph_math::Tensor3> = nearest
-        .iter()
-        .map(|&s| {
-            let [xx, yy, zz, xy, yz, xz] = samples.values[s];
+    let stresses: Vec<tlsph_math::Tensor3> = (0..positions.len())
+        .map(|k| {
+            let [xx, yy, zz, xy, yz, xz] = mapping.values(&samples, k);
             tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
         })
         .collect();
@@ -1668,19 +1667,17 @@ fn initial_stress_file<const D: usize>(
         material,
         positions,
         |k| stresses[k],
-        |k| {
-            let line = samples.lines[nearest[k]];
-            format!(" (line {line} of `{}`)", path.display())
-        },
+        |k| format!(" ({})", sample_source(&samples, &mapping, k, &path)),
     )?;
     Ok(stresses)
 }
 
-/// Reads the table of a field-table key (`{ path, reach }`) with the given component
-/// `columns`, checks which components it gives (`check_given`, before the mapping), and maps
-/// it to the particles at `positions`: for each particle the index of its nearest sample
-/// within `reach` (default: the body's `spacing`). Returns the samples, those indices and the
-/// table's path (relative to the scene's folder).
+/// Reads the table of a field-table key (`{ path, reach, interpolation }`) with the given
+/// component `columns`, checks which components it gives (`check_given`, before the mapping),
+/// and maps it to the particles at `positions`: each particle's values from its nearest sample
+/// (`interpolation = "nearest"`, the default) or a linear fit over the samples around it
+/// (`"linear"`), within `reach` (default: the body's `spacing`, twice that for `linear`).
+/// Returns the samples, the mapping and the table's path (relative to the scene's folder).
 fn mapped_field_table<const D: usize, const N: usize>(
     ctx: &Context<'_>,
     table: &Spanned<FieldFileTable>,
@@ -1689,26 +1686,61 @@ fn mapped_field_table<const D: usize, const N: usize>(
     spacing: f64,
     positions: &[Vector<D>],
     check_given: impl FnOnce(&[bool; N]) -> Result<(), SceneError>,
-) -> Result<(FieldSamples<D, N>, Vec<usize>, PathBuf), SceneError> {
+) -> Result<(FieldSamples<D, N>, SampleMapping, PathBuf), SceneError> {
     let t = table.get_ref();
-    let reach = match &t.reach {
-        Some(r) => ctx.positive(r, &format!("{field}.reach"))?,
-        None => spacing,
+    let interpolation = match t
+        .interpolation
+        .as_ref()
+        .map(|i| (i.get_ref().as_str(), i.span()))
+    {
+        None | Some(("nearest", _)) => Interpolation::Nearest,
+        Some(("linear", _)) => Interpolation::Linear,
+        Some((other, span)) => {
+            return Err(ctx.error(
+                &span,
+                &format!("{field}.interpolation"),
+                format!("unknown interpolation `{other}`; use `nearest` or `linear`"),
+            ))
+        }
+    };
+    let reach = match (&t.reach, interpolation) {
+        (Some(r), _) => ctx.positive(r, &format!("{field}.reach"))?,
+        (None, Interpolation::Nearest) => spacing,
+        // A table at the particles' own positions then gives each particle its neighbours.
+        (None, Interpolation::Linear) => 2.0 * spacing,
     };
     let path = ctx.folder.join(t.path.get_ref());
     let samples = crate::scene_field_file::read_field_samples::<D, N>(&path, columns)
         .map_err(|message| ctx.error(&t.path.span(), &format!("{field}.path"), message))?;
     check_given(&samples.given)?;
-    let nearest = crate::scene_field_file::nearest_samples(&samples, positions, reach).map_err(
-        |message| {
-            ctx.error(
-                &table.span(),
-                field,
-                format!("`{}`: {message}", path.display()),
-            )
-        },
-    )?;
-    Ok((samples, nearest, path))
+    let mapping = crate::scene_field_file::map_samples(&samples, positions, reach, interpolation)
+        .map_err(|message| {
+        ctx.error(
+            &table.span(),
+            field,
+            format!("`{}`: {message}", path.display()),
+        )
+    })?;
+    Ok((samples, mapping, path))
+}
+
+/// Where particle `k`'s values in a field table come from, for messages: "line L of `path`"
+/// for a nearest sample, and the number of samples fitted and the nearest one's line for a
+/// linear fit.
+fn sample_source<const D: usize, const N: usize>(
+    samples: &FieldSamples<D, N>,
+    mapping: &SampleMapping,
+    k: usize,
+    path: &Path,
+) -> String {
+    let line = samples.lines[mapping.nearest(k)];
+    match mapping.sample_count(k) {
+        1 => format!("line {line} of `{}`", path.display()),
+        n => format!(
+            "fitted to {n} samples of `{}`, the nearest on line {line}",
+            path.display()
+        ),
+    }
 }
 
 /// The velocity of each particle from `initial_velocity_file`: the CSV table at `path`
@@ -1740,7 +1772,7 @@ fn initial_velocity_file<const D: usize>(
             format!("gives the whole initial velocity field, so no shape of the body can declare `{key}`"),
         ));
     }
-    let (samples, nearest, path) = mapped_field_table(
+    let (samples, mapping, path) = mapped_field_table(
         ctx,
         table,
         field,
@@ -1749,9 +1781,8 @@ fn initial_velocity_file<const D: usize>(
         positions,
         |_| Ok(()),
     )?;
-    let velocities: Vec<Vector<D>> = nearest
-        .iter()
-        .map(|&s| Vector::<D>::from(samples.values[s]))
+    let velocities: Vec<Vector<D>> = (0..positions.len())
+        .map(|k| Vector::<D>::from(mapping.values(&samples, k)))
         .collect();
     // One pass: each particle's energy is checked (to name it and its line) and summed.
     let mut total = 0.0;
@@ -1764,10 +1795,9 @@ fn initial_velocity_file<const D: usize>(
                     &table.span(),
                     field,
                     format!(
-                        "particle {k} at [{}] (line {} of `{}`): {message}",
+                        "particle {k} at [{}] ({}): {message}",
                         point_text(&positions[k]),
-                        samples.lines[nearest[k]],
-                        path.display()
+                        sample_source(&samples, &mapping, k, &path),
                     ),
                 ));
             }

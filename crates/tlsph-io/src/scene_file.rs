@@ -307,15 +307,16 @@ pub(crate) struct BodyTable {
     pub initial_velocity_file: Option<Spanned<FieldFileTable>>,
 }
 
-/// `initial_stress_file = { path = "residual.csv", reach = 2e-3 }` (or
-/// `initial_velocity_file`): the table to read
-/// (relative to the scene file's folder) and how far a particle's nearest sample may lie
-/// (default: the body's spacing).
+/// `initial_stress_file = { path = "residual.csv", reach = 2e-3, interpolation = "linear" }`
+/// (or `initial_velocity_file`): the table to read (relative to the scene file's folder), how
+/// far the samples a particle takes its values from may lie (default: the body's spacing, twice
+/// that for `linear`), and how they give its values (`nearest`, the default, or `linear`).
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct FieldFileTable {
     pub path: Spanned<String>,
     pub reach: Option<Spanned<f64>>,
+    pub interpolation: Option<Spanned<String>>,
 }
 
 /// `initial_stress_gradient = { yy = [0.0, 7.7e4], ... }`: per stress component its D

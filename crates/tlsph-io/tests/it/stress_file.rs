@@ -88,16 +88,25 @@ fn table_of(points: &[tlsph_math::Vector<2>], stress: impl Fn(usize) -> Tensor3)
     table
 }
 
-#[test]
-fn a_field_read_at_the_particles_runs_bit_identical_to_the_same_linear_field() {
-    let dir = tempfile::tempdir().unwrap();
-    let linear = model_2d(tlsph_io::parse_scene(&column(GRADIENT), "column.toml").unwrap());
-    let body = &linear.bodies[0];
+/// The column declared with its linear gravity stress (`GRADIENT`), and that field σ(X).
+fn declared_column() -> (Model<2>, impl Fn(&tlsph_math::Vector<2>) -> Tensor3) {
+    let model = model_2d(tlsph_io::parse_scene(&column(GRADIENT), "column.toml").unwrap());
+    let body = &model.bodies[0];
     let (at_origin, gradient) = (
         body.initial_stress.unwrap(),
         body.initial_stress_gradient.unwrap(),
     );
-    let field = |k: usize| tlsph_solver::linear_stress_at(at_origin, &gradient, &body.positions[k]);
+    let field =
+        move |x: &tlsph_math::Vector<2>| tlsph_solver::linear_stress_at(at_origin, &gradient, x);
+    (model, field)
+}
+
+#[test]
+fn a_field_read_at_the_particles_runs_bit_identical_to_the_same_linear_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let (linear, field_at) = declared_column();
+    let body = &linear.bodies[0];
+    let field = |k: usize| field_at(&body.positions[k]);
     let table = table_of(&body.positions, field);
     // The path is relative to the scene file's folder, not the working directory.
     let scene = column("initial_stress_file = { path = \"stress/field.csv\" }");
@@ -179,6 +188,37 @@ fn each_particle_takes_the_stress_of_its_nearest_sample() {
             .contains("particle 0 at [0.025, 0.025] has no sample within reach"),
         "{e}"
     );
+}
+
+#[test]
+fn a_coarse_table_mapped_linearly_gives_the_column_its_linear_gravity_stress() {
+    // The column's σ_yy = ρg(y − H) sampled at 3 × 6 points (pitch 0.2, four spacings; the
+    // corners of the column included) and fitted linearly within reach 0.3: every particle's
+    // stress is the declared linear field to round-off (values of order 10⁻², so 10⁻¹⁵ is
+    // about 500 ulps), where the nearest sample is off by up to ρg × 0.1 = 10⁻³.
+    let dir = tempfile::tempdir().unwrap();
+    let (linear, field) = declared_column();
+    let body = &linear.bodies[0];
+    let samples: Vec<tlsph_math::Vector<2>> = (0..3)
+        .flat_map(|i| {
+            (0..6).map(move |j| tlsph_math::Vector::<2>::new(0.2 * i as f64, 0.2 * j as f64))
+        })
+        .collect();
+    let table = table_of(&samples, |k| field(&samples[k]));
+    let largest_error = |interpolation: &str| {
+        let scene = column(&format!(
+            "initial_stress_file = {{ path = \"stress/field.csv\", reach = 0.3, interpolation = \"{interpolation}\" }}"
+        ));
+        let model = model_2d(load_with_table(dir.path(), &scene, &table).unwrap());
+        let stresses = model.bodies[0].initial_stresses.clone().unwrap();
+        (body.positions.iter().zip(&stresses))
+            .map(|(x, s)| (s - field(x)).abs().max())
+            .fold(0.0, f64::max)
+    };
+    let linear_error = largest_error("linear");
+    assert!(linear_error < 1e-15, "linear: {linear_error:e}");
+    let nearest_error = largest_error("nearest");
+    assert!(nearest_error > 5e-4, "nearest: {nearest_error:e}");
 }
 
 #[test]
@@ -298,6 +338,21 @@ fn a_stress_file_is_refused_where_an_initial_stress_is() {
     assert!(
         e.message.contains("takes the particle at [0.025, 0.925]")
             && e.message.contains("line 20 of")
+            && e.message.contains("yield surface"),
+        "{e}"
+    );
+    // A fitted stress is checked too, and the message says where it comes from.
+    let fitted = plastic.replace(
+        "path = \"stress/field.csv\" }",
+        "path = \"stress/field.csv\", interpolation = \"linear\" }",
+    );
+    assert_ne!(fitted, plastic);
+    let e = load_with_table(dir.path(), &fitted, &table).unwrap_err();
+    assert_eq!(e.field, "body[column].initial_stress_file", "{e}");
+    assert!(
+        e.message.contains("fitted to ")
+            && e.message.contains("samples of `")
+            && e.message.contains("the nearest on line")
             && e.message.contains("yield surface"),
         "{e}"
     );

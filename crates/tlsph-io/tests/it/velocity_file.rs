@@ -123,6 +123,85 @@ fn a_rod_started_in_its_first_mode_from_a_file_swings_with_the_mode_s_period_and
     assert!((peak_time - 1.0).abs() < 0.015, "peak at t = {peak_time}");
 }
 
+/// Largest |v − mode| over the rod's particles, over V, and the free end's first peak
+/// displacement over 2V/π, for the first mode read from a table of 11 samples (X = 0, 0.1,
+/// …, 1: one per 10 particles) mapped with `interpolation`.
+fn coarse_mode(interpolation: &str) -> (f64, f64) {
+    let dir = tempfile::tempdir().unwrap();
+    let v0 = 1.0e-3;
+    let mode = |x: f64| v0 * (std::f64::consts::FRAC_PI_2 * x).sin();
+    let samples: Vec<Vector<1>> = (0..=10).map(|k| Vector::<1>::new(0.1 * k as f64)).collect();
+    let key = format!(
+        "initial_velocity_file = {{ path = \"fields/velocity.csv\", reach = 0.15, interpolation = \"{interpolation}\" }}"
+    );
+    let model =
+        model_1d(load_with_table(dir.path(), &rod(&key), &table_of(&samples, mode)).unwrap());
+    let body = &model.bodies[0];
+    let field_error = body
+        .positions
+        .iter()
+        .zip(&body.velocities)
+        .map(|(x, v)| (v.x - mode(x.x)).abs() / v0)
+        .fold(0.0, f64::max);
+    let mut sim = Simulation::new(model).unwrap();
+    let tip = sim.n_particles() - 1;
+    let mut peak = 0.0_f64;
+    while !sim.finished() {
+        sim.step().unwrap();
+        peak = peak.max(sim.displacements()[tip].x);
+    }
+    (field_error, peak / (2.0 * v0 / std::f64::consts::PI))
+}
+
+#[test]
+fn a_coarse_table_mapped_linearly_gives_the_mode_where_the_nearest_sample_gives_steps() {
+    // Between samples 0.1 apart, a linear fit of V sin(πX/2) is off by at most about
+    // |f''| h²/8 = 2.5 V × 0.01/8 = 0.003 V (the fit over 3 samples adds a similar amount);
+    // the nearest sample is off by up to |f'| h/2 = 1.6 V × 0.05 = 0.08 V.
+    // Measured: 0.0046 V and 0.071 V. The peaks, 0.9956 (linear) and 0.9981 (nearest) of
+    // 2V/π, differ less: the steps average out over the rod, the field pointwise does not.
+    let (linear_error, linear_peak) = coarse_mode("linear");
+    let (nearest_error, _) = coarse_mode("nearest");
+    assert!(
+        linear_error < 0.008,
+        "linear: field off by {linear_error} V"
+    );
+    assert!(
+        nearest_error > 0.05,
+        "nearest: field off by {nearest_error} V"
+    );
+    // The rod swings with the mode's amplitude (tolerance as for the table at the particles).
+    assert!(
+        (linear_peak - 1.0).abs() < 0.01,
+        "linear: peak {linear_peak} of 2V/π"
+    );
+}
+
+#[test]
+fn linear_interpolation_s_default_reach_takes_in_a_table_at_the_particles() {
+    // Twice the spacing: each particle fits its own sample and its neighbours', so a linear
+    // field comes back to round-off (the nearest-sample default, one spacing, gives it
+    // exactly).
+    let dir = tempfile::tempdir().unwrap();
+    let template = model_1d(parse_scene(&rod(""), "rod.toml").unwrap());
+    let table = table_of(&template.bodies[0].positions, |x| 0.3 - 0.2 * x);
+    let key =
+        "initial_velocity_file = { path = \"fields/velocity.csv\", interpolation = \"linear\" }";
+    let model = model_1d(load_with_table(dir.path(), &rod(key), &table).unwrap());
+    for (x, v) in model.bodies[0]
+        .positions
+        .iter()
+        .zip(&model.bodies[0].velocities)
+    {
+        assert!(
+            (v.x - (0.3 - 0.2 * x.x)).abs() < 1e-15,
+            "{} at {}",
+            v.x,
+            x.x
+        );
+    }
+}
+
 #[test]
 fn velocity_file_errors_name_the_file_line_and_field() {
     let dir = tempfile::tempdir().unwrap();
@@ -160,6 +239,20 @@ fn velocity_file_errors_name_the_file_line_and_field() {
             "x, vx\n",
             "reach",
             "",
+        ),
+        (
+            "",
+            "initial_velocity_file = { path = \"fields/velocity.csv\", interpolation = \"cubic\" }",
+            &good,
+            "interpolation",
+            "unknown interpolation `cubic`; use `nearest` or `linear`",
+        ),
+        (
+            "",
+            "initial_velocity_file = { path = \"fields/velocity.csv\", reach = 0.005, interpolation = \"linear\" }",
+            &good,
+            "",
+            "particle 0 at [0.005]: the samples within reach 5e-3 (1 of them) lie on one point",
         ),
         (
             "velocity = [0.1]",
