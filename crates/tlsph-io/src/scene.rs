@@ -1787,10 +1787,9 @@ fn initial_velocity_file<const D: usize>(
     // One pass: each particle's energy is checked (to name it and its line) and summed.
     let mut total = 0.0;
     for (k, v) in velocities.iter().enumerate() {
-        match tlsph_solver::check_kinetic_energy(&[*v], &volumes[k..k + 1], density) {
+        match tlsph_solver::particle_kinetic_energy(v, volumes[k], density) {
             Ok(energy) => total += energy,
             Err(message) => {
-                let message = message.trim_start_matches("particle 0: ");
                 return Err(ctx.error(
                     &table.span(),
                     field,

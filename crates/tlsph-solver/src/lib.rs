@@ -41,6 +41,8 @@ pub use model::{
     SimulationConfig, StrengthModel, StressUpdate, SymmetryPlane, TableShape, Thermal,
     VelocityRamp, WallDescription, WallMotion, WallShape, INITIAL_YIELD_TOLERANCE,
 };
-pub use simulation::{check_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport};
+pub use simulation::{
+    check_kinetic_energy, particle_kinetic_energy, BodyInfo, BondMetrics, Simulation, StepReport,
+};
 pub use tlsph_kernels::KernelKind;
 pub use updated_lagrangian::{CurrentPairs, SKIN_FRACTION};

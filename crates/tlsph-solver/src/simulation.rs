@@ -2744,6 +2744,24 @@ fn eos_sound_speed(
     ((modulus + shear_term) * jacobian / rho0).max(0.0).sqrt()
 }
 
+/// The kinetic energy ½ ρ0 V |v|² of one particle, or a message (naming its velocity, not the
+/// particle) if it overflows f64; [`check_kinetic_energy`] does this for a whole body.
+pub fn particle_kinetic_energy<const D: usize>(
+    velocity: &Vector<D>,
+    volume: f64,
+    density: f64,
+) -> Result<f64, String> {
+    let energy = 0.5 * density * volume * velocity.norm_squared();
+    if energy.is_finite() {
+        Ok(energy)
+    } else {
+        Err(format!(
+            "the kinetic energy ½ρV|v|² of its velocity {:?} is not a finite number",
+            velocity.as_slice()
+        ))
+    }
+}
+
 /// The kinetic energy Σ ½ ρ0 V_I |v_I|² of a body's starting state, or a message naming the
 /// first particle (or the body as a whole) whose kinetic energy overflows f64. A velocity whose
 /// square overflows (|v| ≳ 1e154) leaves no finite energy balance and no finite time step
@@ -2755,14 +2773,8 @@ pub fn check_kinetic_energy<const D: usize>(
 ) -> Result<f64, String> {
     let mut total = 0.0;
     for (i, (v, volume)) in velocities.iter().zip(volumes).enumerate() {
-        let energy = 0.5 * density * volume * v.norm_squared();
-        if !energy.is_finite() {
-            return Err(format!(
-                "particle {i}: the kinetic energy ½ρV|v|² of its velocity {:?} is not a finite number",
-                v.as_slice()
-            ));
-        }
-        total += energy;
+        total += particle_kinetic_energy(v, *volume, density)
+            .map_err(|message| format!("particle {i}: {message}"))?;
     }
     if !total.is_finite() {
         return Err("the body's kinetic energy is not a finite number".into());

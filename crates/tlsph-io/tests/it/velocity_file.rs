@@ -293,7 +293,10 @@ fn velocity_file_errors_name_the_file_line_and_field() {
         .collect();
     let e = load_with_table(dir.path(), &rod(KEY), &format!("# c\nx, vx\n{huge}")).unwrap_err();
     assert!(
-        e.message.contains("particle 0 at [0.005] (line 3 of `"),
+        e.message.contains("particle 0 at [0.005] (line 3 of `")
+            && e.message
+                .contains("): the kinetic energy ½ρV|v|² of its velocity [1e200]")
+            && !e.message.contains("particle 0:"),
         "{e}"
     );
     // With ρ = 20, each particle's ½ρV|v|² = ½ × 20 × 0.01 × 1e308 = 1e307 is finite; the
