@@ -437,6 +437,47 @@ mod tests {
     }
 
     #[test]
+    fn in_3d_a_linear_field_comes_back_and_samples_on_one_plane_are_refused() {
+        let field = |p: &Vector<3>| [1.0 - p.x + 2.0 * p.y + 0.5 * p.z];
+        let grid = |nz: usize| -> FieldSamples<3, 1> {
+            let points: Vec<Vector<3>> = (0..4)
+                .flat_map(|i| (0..4).flat_map(move |j| (0..nz).map(move |k| (i, j, k))))
+                .map(|(i, j, k)| Vector::<3>::new(i as f64, j as f64, k as f64))
+                .collect();
+            FieldSamples {
+                values: points.iter().map(field).collect(),
+                lines: (2..).take(points.len()).collect(),
+                points,
+                given: [true],
+            }
+        };
+        // Particles between the samples of a 4 × 4 × 4 grid of pitch 1, reach 1.5.
+        let particles: Vec<Vector<3>> = (0..5)
+            .map(|i| {
+                Vector::<3>::new(
+                    0.3 + 0.6 * i as f64,
+                    1.7 - 0.3 * i as f64,
+                    0.2 + 0.5 * i as f64,
+                )
+            })
+            .collect();
+        let samples = grid(4);
+        let mapping = map_samples(&samples, &particles, 1.5, Interpolation::Linear).unwrap();
+        for (k, x) in particles.iter().enumerate() {
+            let got = mapping.values(&samples, k)[0];
+            assert!((got - field(x)[0]).abs() < 1e-13, "{got} at {x:?}");
+        }
+        // All samples on the plane z = 0: a fit in z is not defined.
+        let flat = grid(1);
+        let on_plane = [Vector::<3>::new(1.5, 1.5, 0.2)];
+        let e = map_samples(&flat, &on_plane, 1.5, Interpolation::Linear).unwrap_err();
+        assert!(
+            e.contains("particle 0 at [1.5, 1.5, 0.2]") && e.contains("one point, line or plane"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn linear_interpolation_refuses_samples_on_one_line_and_names_the_particle() {
         // In 2D, samples along y = 0 only: a fit in y is not defined.
         let points: Vec<Vector<2>> = (0..6).map(|i| Vector::<2>::new(i as f64, 0.0)).collect();
