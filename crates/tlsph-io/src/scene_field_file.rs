@@ -431,7 +431,8 @@ mod tests {
         let sum: f64 = terms.iter().map(|t| t.1).sum();
         assert!((sum - 1.0).abs() < 1e-14, "Σφ = {sum}");
         assert!(terms.iter().all(|t| t.1 > 0.0), "{terms:?}");
-        // x² is not linear: the fit at the grid point lies between its samples' values 1..9.
+        // x² is convex and not linear: with positive weights symmetric about X = 2 the fit lies
+        // above x² = 4 there and below the largest sample value, 9.
         let value = mapping.values(&samples, 0)[0];
         assert!(value > 4.0 && value < 9.0, "{value}");
     }
