@@ -1450,12 +1450,18 @@ fn build_body<const D: usize>(
             &volumes,
         )?;
     }
+    let initial_plastic_strains =
+        initial_plastic_strains::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
+    let plastic_strain_of = |k: usize| initial_plastic_strains.as_ref().map_or(0.0, |e| e[k]);
     let initial_stress = match &b.initial_stress {
         Some(t) => Some(initial_stress::<D>(
             ctx,
             t,
             &field("initial_stress"),
             &materials[material],
+            (0..positions.len())
+                .map(plastic_strain_of)
+                .fold(f64::INFINITY, f64::min),
         )?),
         None => None,
     };
@@ -1467,6 +1473,7 @@ fn build_body<const D: usize>(
             &materials[material],
             initial_stress.unwrap_or_else(tlsph_math::Tensor3::zeros),
             &positions,
+            plastic_strain_of,
         )?),
         None => None,
     };
@@ -1494,6 +1501,7 @@ fn build_body<const D: usize>(
                 &materials[material],
                 spacing,
                 &positions,
+                plastic_strain_of,
             )?)
         }
         None => None,
@@ -1508,6 +1516,7 @@ fn build_body<const D: usize>(
         initial_stress,
         initial_stress_gradient,
         initial_stresses,
+        initial_plastic_strains,
     })
 }
 
@@ -1519,6 +1528,7 @@ fn initial_stress<const D: usize>(
     table: &Spanned<StressComponents>,
     field: &str,
     material: &MaterialDescription,
+    least_plastic_strain: f64,
 ) -> Result<tlsph_math::Tensor3, SceneError> {
     let c = table.get_ref();
     let span = table.span();
@@ -1530,14 +1540,17 @@ fn initial_stress<const D: usize>(
     }
     stress_is_not_state(ctx, &span, field, material)?;
     let stress = tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    if let Some((equivalent, yield_stress)) = material.model.outside_initial_yield_surface(&stress)
+    if let Some((equivalent, yield_stress)) = material
+        .model
+        .outside_yield_surface(&stress, least_plastic_strain)
     {
         return Err(ctx.error(
             &span,
             field,
             format!(
-                "lies outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the initial yield stress {yield_stress:e} Pa (the first step would silently return it to the surface)",
-                material.name
+                "lies outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa exceeds the {} {yield_stress:e} Pa (the first step would silently return it to the surface)",
+                material.name,
+                yield_stress_name(least_plastic_strain),
             ),
         ));
     }
@@ -1555,6 +1568,7 @@ fn initial_stress_gradient<const D: usize>(
     material: &MaterialDescription,
     at_origin: tlsph_math::Tensor3,
     positions: &[Vector<D>],
+    plastic_strain_of: impl Fn(usize) -> f64,
 ) -> Result<[tlsph_math::Tensor3; D], SceneError> {
     let c = table.get_ref();
     let span = table.span();
@@ -1592,6 +1606,7 @@ fn initial_stress_gradient<const D: usize>(
         material,
         positions,
         |k| tlsph_solver::linear_stress_at(at_origin, &gradient, &positions[k]),
+        plastic_strain_of,
         |_| String::new(),
     )?;
     Ok(gradient)
@@ -1608,25 +1623,38 @@ fn within_initial_yield<const D: usize>(
     material: &MaterialDescription,
     positions: &[Vector<D>],
     stress_of: impl Fn(usize) -> tlsph_math::Tensor3,
+    plastic_strain_of: impl Fn(usize) -> f64,
     source: impl Fn(usize) -> String,
 ) -> Result<(), SceneError> {
     for (k, x) in positions.iter().enumerate() {
-        if let Some((equivalent, yield_stress)) =
-            material.model.outside_initial_yield_surface(&stress_of(k))
+        let plastic_strain = plastic_strain_of(k);
+        if let Some((equivalent, yield_stress)) = material
+            .model
+            .outside_yield_surface(&stress_of(k), plastic_strain)
         {
             let source = source(k);
             return Err(ctx.error(
                 span,
                 field,
                 format!(
-                    "takes the particle at [{}] outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa{source} exceeds the initial yield stress {yield_stress:e} Pa",
+                    "takes the particle at [{}] outside the yield surface of material `{}`: its von Mises stress {equivalent:e} Pa{source} exceeds the {} {yield_stress:e} Pa",
                     point_text(x),
-                    material.name
+                    material.name,
+                    yield_stress_name(plastic_strain),
                 ),
             ));
         }
     }
     Ok(())
+}
+
+/// How a yield-check message names the yield stress of a particle with `plastic_strain`.
+fn yield_stress_name(plastic_strain: f64) -> String {
+    if plastic_strain > 0.0 {
+        format!("yield stress at its initial plastic strain {plastic_strain}")
+    } else {
+        "initial yield stress".into()
+    }
 }
 
 /// The stress of each particle from `initial_stress_file`: the CSV table at `path` (relative
@@ -1641,6 +1669,7 @@ fn initial_stress_file<const D: usize>(
     material: &MaterialDescription,
     spacing: f64,
     positions: &[Vector<D>],
+    plastic_strain_of: impl Fn(usize) -> f64,
 ) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
     let (samples, mapping, path) = mapped_field_table(
         ctx,
@@ -1667,9 +1696,108 @@ fn initial_stress_file<const D: usize>(
         material,
         positions,
         |k| stresses[k],
+        plastic_strain_of,
         |k| format!(" ({})", sample_source(&samples, &mapping, k, &path)),
     )?;
     Ok(stresses)
+}
+
+/// The effective plastic strain ε̄p of each particle at t = 0 from `initial_plastic_strain`
+/// (uniform) or `initial_plastic_strain_file` (a CSV table with the column `plastic_strain`,
+/// mapped as the other field tables), or `None` if the body declares neither (or its table is
+/// not read). Only for elastic–plastic materials; every value finite and ≥ 0 (a table cell
+/// below 0 is an error naming its line; a linear fit's undershoot below 0 at the edge of a
+/// region at 0 is taken as 0), and below the failure strain of a `max-plastic-strain` failure
+/// law (the error names the first particle at or above it).
+fn initial_plastic_strains<const D: usize>(
+    ctx: &Context<'_>,
+    b: &BodyTable,
+    field: &dyn Fn(&str) -> String,
+    material: &MaterialDescription,
+    spacing: f64,
+    positions: &[Vector<D>],
+) -> Result<Option<Vec<f64>>, SceneError> {
+    let (span, key) = match (&b.initial_plastic_strain, &b.initial_plastic_strain_file) {
+        (None, None) => return Ok(None),
+        (Some(_), Some(t)) => {
+            return Err(ctx.error(
+                &t.span(),
+                &field("initial_plastic_strain_file"),
+                "gives the whole plastic strain field, so `initial_plastic_strain` cannot be declared with it".into(),
+            ))
+        }
+        (Some(v), None) => (v.span(), "initial_plastic_strain"),
+        (None, Some(t)) => (t.span(), "initial_plastic_strain_file"),
+    };
+    let MaterialModel::ElasticPlastic(plastic) = &material.model else {
+        return Err(ctx.error(
+            &span,
+            &field(key),
+            format!(
+                "material `{}` has no plastic strain (only `elastic-plastic` and `johnson-cook` materials have one)",
+                material.name
+            ),
+        ));
+    };
+    let (strains, source): (Vec<f64>, Box<dyn Fn(usize) -> String>) =
+        match (&b.initial_plastic_strain, &b.initial_plastic_strain_file) {
+            (Some(v), _) => {
+                let value = *v.get_ref();
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(ctx.error(
+                        &span,
+                        &field(key),
+                        format!("must be a finite number ≥ 0, got {value}"),
+                    ));
+                }
+                (vec![value; positions.len()], Box::new(|_| String::new()))
+            }
+            (None, Some(t)) if ctx.read_field_tables => {
+                let (samples, mapping, path) = mapped_field_table(
+                    ctx,
+                    t,
+                    &field(key),
+                    &crate::scene_field_file::PLASTIC_STRAIN_COLUMNS,
+                    spacing,
+                    positions,
+                    |_| Ok(()),
+                )?;
+                if let Some(s) = samples.values.iter().position(|v| v[0] < 0.0) {
+                    return Err(ctx.error(
+                        &t.get_ref().path.span(),
+                        &format!("{}.path", field(key)),
+                        format!(
+                            "`{}` line {}: `plastic_strain` must be ≥ 0, got {}",
+                            path.display(),
+                            samples.lines[s],
+                            samples.values[s][0]
+                        ),
+                    ));
+                }
+                let strains = (0..positions.len())
+                    .map(|k| mapping.values(&samples, k)[0].max(0.0))
+                    .collect();
+                let source = move |k| format!(" ({})", sample_source(&samples, &mapping, k, &path));
+                (strains, Box::new(source))
+            }
+            _ => return Ok(None),
+        };
+    if let Some(tlsph_solver::FailureModel::MaxPlasticStrain(limit)) = plastic.failure {
+        if let Some(k) = strains.iter().position(|e| limit.fails(*e)) {
+            return Err(ctx.error(
+                &span,
+                &field(key),
+                format!(
+                    "the particle at [{}] starts at plastic strain {}{}, at or beyond the failure strain of material `{}`",
+                    point_text(&positions[k]),
+                    strains[k],
+                    source(k),
+                    material.name
+                ),
+            ));
+        }
+    }
+    Ok(Some(strains))
 }
 
 /// Reads the table of a field-table key (`{ path, reach, interpolation }`) with the given

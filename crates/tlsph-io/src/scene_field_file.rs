@@ -1,5 +1,5 @@
 //! Initial fields read from CSV tables of sample points (`initial_stress_file`,
-//! `initial_velocity_file`), each particle given the values of its nearest sample or of a
+//! `initial_velocity_file`, `initial_plastic_strain_file`), each particle given the values of its nearest sample or of a
 //! linear moving-least-squares fit over the samples around it (ours, not in the theses, which
 //! start from rest or from uniform or linear fields). Typical sources: a
 //! residual stress or a velocity field computed by another code, or a field measured on a grid.
@@ -13,6 +13,9 @@ pub(crate) const STRESS_COLUMNS: [&str; 6] = ["xx", "yy", "zz", "xy", "yz", "xz"
 
 /// Velocity columns in the order of a velocity vector's components.
 pub(crate) const VELOCITY_COLUMNS: [&str; 3] = ["vx", "vy", "vz"];
+
+/// The effective plastic strain column (named as the `plastic_strain` output field).
+pub(crate) const PLASTIC_STRAIN_COLUMNS: [&str; 1] = ["plastic_strain"];
 
 /// The sample points of a field table and the field's N components at each.
 #[derive(Debug, Clone)]

@@ -305,6 +305,10 @@ pub(crate) struct BodyTable {
     pub initial_stress_file: Option<Spanned<FieldFileTable>>,
     /// An initial velocity field read from a CSV file of sample points.
     pub initial_velocity_file: Option<Spanned<FieldFileTable>>,
+    /// Uniform effective plastic strain of every particle at t = 0 (a work-hardened part).
+    pub initial_plastic_strain: Option<Spanned<f64>>,
+    /// An effective plastic strain field read from a CSV file of sample points.
+    pub initial_plastic_strain_file: Option<Spanned<FieldFileTable>>,
 }
 
 /// `initial_stress_file = { path = "residual.csv", reach = 2e-3, interpolation = "linear" }`

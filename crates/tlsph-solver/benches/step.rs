@@ -97,6 +97,7 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
             initial_stress: None,
             initial_stress_gradient: None,
             initial_stresses: None,
+            initial_plastic_strains: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

@@ -141,6 +141,20 @@ impl StrengthModel {
             StrengthModel::JohnsonCook { model, .. } => model.parameters().a,
         }
     }
+
+    /// Yield stress σ_y(ε̄p) \[Pa\] at room temperature and a quasi-static rate: σ_y0 + E_p ε̄p
+    /// (von Mises, numerics.md §8.4) or A + B ε̄p^n (Johnson–Cook, §8.5). It does not fall as
+    /// ε̄p grows (E_p, B ≥ 0), so a work-hardened particle admits at least the stresses a
+    /// virgin one does.
+    pub fn quasi_static_yield_stress(&self, plastic_strain: f64) -> f64 {
+        match self {
+            StrengthModel::VonMises(m) => m.yield_stress(plastic_strain),
+            StrengthModel::JohnsonCook { model, .. } => {
+                let p = model.parameters();
+                p.a + p.b * plastic_strain.max(0.0).powf(p.n)
+            }
+        }
+    }
 }
 
 /// How the pressure of an elastic–plastic material is obtained (numerics.md §8.3).
@@ -279,19 +293,21 @@ impl MaterialModel {
         matches!(self, MaterialModel::ElasticPlastic(m) if m.thermal.is_some())
     }
 
-    /// For an elastic–plastic material and a starting Cauchy stress outside its initial yield
-    /// surface (von Mises stress above σ_y(ε̄p = 0) by more than [`INITIAL_YIELD_TOLERANCE`]),
-    /// the pair (von Mises stress, initial yield stress) \[Pa\]; `None` when the stress is
-    /// admissible or the material has no yield surface.
-    pub fn outside_initial_yield_surface(
+    /// For an elastic–plastic material and a starting Cauchy stress outside the yield surface
+    /// of a particle with the effective plastic strain `plastic_strain` (von Mises stress above
+    /// [`StrengthModel::quasi_static_yield_stress`] by more than [`INITIAL_YIELD_TOLERANCE`]),
+    /// the pair (von Mises stress, yield stress) \[Pa\]; `None` when the stress is admissible
+    /// or the material has no yield surface.
+    pub fn outside_yield_surface(
         &self,
         stress: &tlsph_math::Tensor3,
+        plastic_strain: f64,
     ) -> Option<(f64, f64)> {
         let MaterialModel::ElasticPlastic(m) = self else {
             return None;
         };
         let equivalent = tlsph_math::von_mises(stress);
-        let yield_stress = m.strength.initial_yield_stress();
+        let yield_stress = m.strength.quasi_static_yield_stress(plastic_strain);
         (equivalent > yield_stress * (1.0 + INITIAL_YIELD_TOLERANCE))
             .then_some((equivalent, yield_stress))
     }
@@ -361,6 +377,10 @@ pub struct BodyDescription<const D: usize> {
     /// stress field mapped from a file; excludes `initial_stress` and
     /// `initial_stress_gradient`. `None`: as those two give.
     pub initial_stresses: Option<Vec<tlsph_math::Tensor3>>,
+    /// An effective plastic strain ε̄p per particle at t = 0 (same order as `positions`), e.g.
+    /// a work-hardened part or the strain left by a forming step; only for elastic–plastic
+    /// materials. See [`crate::Simulation::set_initial_plastic_strains`]. `None`: 0.
+    pub initial_plastic_strains: Option<Vec<f64>>,
 }
 
 /// The linear initial stress σ0 + Σ_k X_k G_k at reference position `x` (σ0 and the

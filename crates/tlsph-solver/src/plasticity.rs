@@ -58,6 +58,19 @@ impl PlasticState {
         }
     }
 
+    /// Sets the effective plastic strain of local particle `k`; `false` (and nothing set) if
+    /// the body's material has no plastic state.
+    pub fn set_plastic_strain(&mut self, k: usize, plastic_strain: f64) -> bool {
+        match self {
+            PlasticState::None => return false,
+            PlasticState::Strain(v) => v[k][0] = plastic_strain,
+            PlasticState::StrainTemperature(v) => v[k][0] = plastic_strain,
+            PlasticState::StrainDamage(v) => v[k][0] = plastic_strain,
+            PlasticState::StrainTemperatureDamage(v) => v[k][0] = plastic_strain,
+        }
+        true
+    }
+
     /// Effective plastic strain of local particle `k`, if the body has one.
     pub fn plastic_strain(&self, k: usize) -> Option<f64> {
         match self {

@@ -11,7 +11,9 @@ use crate::effects::{
 use crate::error::{LimitingParticle, SetupError, StepError};
 use crate::fields::ParticleField;
 use crate::ghosts::{check_planes, reflections, Ghosts};
-use crate::model::{Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, WallShape};
+use crate::model::{
+    FailureModel, Formulation, MaterialModel, Model, SimulationConfig, StressUpdate, WallShape,
+};
 use crate::particles::Particles;
 use crate::plasticity::{update_elastic_plastic, PlasticBody, PlasticState};
 use crate::prescribed::{Drivers, PrescribedSet};
@@ -447,6 +449,10 @@ impl<const D: usize> Simulation<D> {
             next_dt: 0.0,
         };
         for (b, body) in model.bodies.iter().enumerate() {
+            // Before the stresses: a work-hardened particle's yield surface is larger.
+            if let Some(strains) = &body.initial_plastic_strains {
+                sim.set_initial_plastic_strains(b, strains)?;
+            }
             if let Some(stresses) = &body.initial_stresses {
                 if body.initial_stress.is_some() || body.initial_stress_gradient.is_some() {
                     return Err(SetupError::InvalidBody {
@@ -1403,10 +1409,12 @@ impl<const D: usize> Simulation<D> {
             {
                 return refuse(format!("{}: stress must be finite and symmetric", at()));
             }
-            if let Some((equivalent, yield_stress)) = material.outside_initial_yield_surface(stress)
+            let plastic_strain = self.plastic[body].plastic_strain(k).unwrap_or(0.0);
+            if let Some((equivalent, yield_stress)) =
+                material.outside_yield_surface(stress, plastic_strain)
             {
                 return refuse(format!(
-                    "{}: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > initial yield stress {yield_stress:e} Pa); the first step would return it to the surface",
+                    "{}: the stress lies outside the yield surface (von Mises {equivalent:e} Pa > yield stress {yield_stress:e} Pa at plastic strain {plastic_strain}); the first step would return it to the surface",
                     at()
                 ));
             }
@@ -1417,6 +1425,71 @@ impl<const D: usize> Simulation<D> {
             self.particles.pk1[i] = tlsph_math::project(&stress);
         }
         self.ghosts.refresh_stress(&mut self.particles);
+        Ok(())
+    }
+
+    /// Sets the effective plastic strain ε̄p of body `body`'s particles before the first step
+    /// (`strains[k]` for its particle k, one per particle), e.g. a work-hardened part: the
+    /// yield stress starts at σ_y(ε̄p) and a failure or damage law that reads ε̄p starts from
+    /// it. Refused for a material without plastic strain, for a value that is negative or not
+    /// finite, and for one at which a `max-plastic-strain` failure law has already failed the
+    /// particle; the error names the first particle. Set it before an initial stress, which
+    /// is checked against the yield surface at this ε̄p.
+    pub fn set_initial_plastic_strains(
+        &mut self,
+        body: usize,
+        strains: &[f64],
+    ) -> Result<(), SetupError> {
+        let refuse = |message: String| {
+            Err(SetupError::InvalidConfig {
+                field: "initial_plastic_strain",
+                message,
+            })
+        };
+        let Some(info) = self.bodies.get(body) else {
+            return refuse(format!("body #{body} does not exist"));
+        };
+        if self.steps_done > 0 {
+            return refuse("must be set before the first step".into());
+        }
+        let MaterialModel::ElasticPlastic(material) = &self.materials[info.material] else {
+            return refuse(format!(
+                "body `{}`: its material has no plastic strain (only elastic–plastic ones do)",
+                info.name
+            ));
+        };
+        if strains.len() != info.range.len() {
+            return refuse(format!(
+                "body `{}` has {} particles but {} plastic strains were given",
+                info.name,
+                info.range.len(),
+                strains.len()
+            ));
+        }
+        for (k, &strain) in strains.iter().enumerate() {
+            let x = self.particles.positions0[info.range.start + k];
+            let text: Vec<String> = x.iter().map(|c| format!("{c:e}")).collect();
+            let at = format!(
+                "body `{}`, particle {k} at [{}]",
+                info.name,
+                text.join(", ")
+            );
+            if !(strain.is_finite() && strain >= 0.0) {
+                return refuse(format!(
+                    "{at}: the plastic strain must be a finite number ≥ 0, got {strain}"
+                ));
+            }
+            if let Some(FailureModel::MaxPlasticStrain(limit)) = material.failure {
+                if limit.fails(strain) {
+                    return refuse(format!(
+                        "{at}: the plastic strain {strain} has already reached the failure strain of its material"
+                    ));
+                }
+            }
+        }
+        for (k, &strain) in strains.iter().enumerate() {
+            self.plastic[body].set_plastic_strain(k, strain);
+        }
         Ok(())
     }
 
@@ -2807,6 +2880,7 @@ mod penalty_contact_tests {
             initial_stress: None,
             initial_stress_gradient: None,
             initial_stresses: None,
+            initial_plastic_strains: None,
         }
     }
 
@@ -2957,6 +3031,7 @@ mod time_step_tests {
                 initial_stress: None,
                 initial_stress_gradient: None,
                 initial_stresses: None,
+                initial_plastic_strains: None,
             }],
             boundaries: vec![],
             effects: Default::default(),

@@ -79,6 +79,7 @@ pub fn model(
             initial_stress: None,
             initial_stress_gradient: None,
             initial_stresses: None,
+            initial_plastic_strains: None,
             positions,
         }],
         boundaries: loads

@@ -16,6 +16,7 @@ mod kernel_groups;
 mod materials;
 mod overview;
 mod placement;
+mod plastic_strain;
 mod stress_file;
 mod velocity_file;
 mod wall_friction;

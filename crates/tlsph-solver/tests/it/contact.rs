@@ -44,6 +44,7 @@ pub(super) fn body<const D: usize>(
         initial_stress: None,
         initial_stress_gradient: None,
         initial_stresses: None,
+        initial_plastic_strains: None,
     }
 }
 

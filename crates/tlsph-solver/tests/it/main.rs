@@ -121,6 +121,7 @@ fn model<const D: usize>(
             initial_stress: None,
             initial_stress_gradient: None,
             initial_stresses: None,
+            initial_plastic_strains: None,
             positions,
         }],
         boundaries: vec![],

@@ -415,6 +415,90 @@ fn a_stress_per_particle_is_set_checked_and_exclusive() {
 }
 
 #[test]
+fn the_quasi_static_yield_stress_is_the_flow_stress_at_the_reference_rate_and_room_temperature() {
+    use tlsph_materials::strength::{JohnsonCookStrength, JohnsonCookStrengthParameters};
+    use tlsph_solver::StrengthModel;
+    // OFHC copper (Johnson and Cook 1983): A = 90 MPa, B = 292 MPa, n = 0.31.
+    let parameters = JohnsonCookStrengthParameters {
+        a: 90e6,
+        b: 292e6,
+        n: 0.31,
+        c: 0.025,
+        m: 1.09,
+        reference_strain_rate: 1.0,
+        room_temperature: 293.0,
+        melt_temperature: 1356.0,
+    };
+    let model = JohnsonCookStrength::new(parameters).unwrap();
+    let strength = StrengthModel::JohnsonCook {
+        model,
+        iterate: false,
+    };
+    for plastic_strain in [0.0, 0.05, 0.3, 1.0] {
+        let expected = model.yield_stress(plastic_strain, 1.0, 293.0);
+        let got = strength.quasi_static_yield_stress(plastic_strain);
+        assert!(
+            (got / expected - 1.0).abs() < 1e-15,
+            "{got:e} vs {expected:e}"
+        );
+    }
+    assert_eq!(strength.quasi_static_yield_stress(0.0), 90e6);
+}
+
+#[test]
+fn an_initial_plastic_strain_raises_the_yield_surface_and_is_checked() {
+    use tlsph_materials::MaxPlasticStrainFailure;
+    use tlsph_solver::FailureModel;
+    // copper(): σ_y0 = 90 MPa; at ε̄p = 0.1 the yield stress is 90 MPa + 0.1 E_p.
+    let uniaxial = |s: f64| Tensor3::new(s, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let material = copper();
+    let hardened = material.strength.quasi_static_yield_stress(0.1);
+    assert!(hardened > 90e6 * 1.001, "{hardened:e}");
+    let mut m = copper_block_model(material);
+    let n = m.bodies[0].positions.len();
+    m.bodies[0].initial_plastic_strains = Some(vec![0.1; n]);
+    m.bodies[0].initial_stress = Some(uniaxial(0.5 * (90e6 + hardened)));
+    // Set before the stress, so the stress between the two yield stresses is admitted.
+    let sim = Simulation::new(m.clone()).unwrap();
+    assert_eq!(sim.sample(ParticleField::PlasticStrain, 3), 0.1);
+    let mut virgin = m.clone();
+    virgin.bodies[0].initial_plastic_strains = None;
+    let Err(error) = Simulation::new(virgin) else {
+        panic!("the stress lies outside the virgin yield surface")
+    };
+    assert!(error.to_string().contains("yield surface"), "{error}");
+    // Refusals, each naming what is wrong.
+    let refused = |strains: Vec<f64>, material: MaterialModel| {
+        let mut m = copper_block_model(copper());
+        m.materials[0].model = material;
+        m.bodies[0].initial_plastic_strains = Some(strains);
+        match Simulation::new(m) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("must be refused"),
+        }
+    };
+    let ep = MaterialModel::ElasticPlastic(copper());
+    let mut negative = vec![0.1; n];
+    negative[7] = -0.01;
+    let e = refused(negative, ep);
+    assert!(e.contains("particle 7 at [") && e.contains("≥ 0"), "{e}");
+    let e = refused(vec![0.1; n - 1], ep);
+    assert!(e.contains(&format!("{n} particles but {}", n - 1)), "{e}");
+    let elastic = MaterialModel::LinearElastic(LinearElastic::new(1e11, 0.3).unwrap());
+    let e = refused(vec![0.1; n], elastic);
+    assert!(e.contains("has no plastic strain"), "{e}");
+    let mut failing = copper();
+    failing.failure = Some(FailureModel::MaxPlasticStrain(
+        MaxPlasticStrainFailure::new(0.1).unwrap(),
+    ));
+    let e = refused(vec![0.1; n], MaterialModel::ElasticPlastic(failing));
+    assert!(
+        e.contains("particle 0 at [") && e.contains("failure strain"),
+        "{e}"
+    );
+}
+
+#[test]
 fn a_particle_whose_neighbours_all_fail_fails_with_them() {
     // A 1D bar prestressed in tension whose last two particles are launched outward at 0.2 c:
     // the bar tears at particles 97 and 98, and particle 99 (bonded to 97 and 98 only) is left
