@@ -71,6 +71,21 @@ fn short_plate_impact() -> tlsph_io::Scene {
     .unwrap()
 }
 
+/// Writes `scene` (as `scene.toml`) and `table` (at `table_path`, relative to `dir`, its
+/// folders made) into `dir` and loads the scene from there, as a run would.
+fn load_with_table(
+    dir: &std::path::Path,
+    scene: &str,
+    table_path: &str,
+    table: &str,
+) -> Result<tlsph_io::Scene, tlsph_io::SceneError> {
+    let table_path = dir.join(table_path);
+    fs::create_dir_all(table_path.parent().unwrap()).unwrap();
+    fs::write(table_path, table).unwrap();
+    fs::write(dir.join("scene.toml"), scene).unwrap();
+    tlsph_io::load_scene(&dir.join("scene.toml"))
+}
+
 fn error_of(text: &str) -> tlsph_io::SceneError {
     parse_scene(text, "scene.toml").expect_err("scene must be rejected")
 }

@@ -146,10 +146,7 @@ fn a_pre_strained_rod_yields_at_its_raised_yield_stress() {
 
 /// Writes `scene` and `table` (as `fields/ep.csv`) into `dir` and loads the scene.
 fn load_with_table(dir: &Path, scene: &str, table: &str) -> Result<tlsph_io::Scene, SceneError> {
-    fs::create_dir_all(dir.join("fields")).unwrap();
-    fs::write(dir.join("fields/ep.csv"), table).unwrap();
-    fs::write(dir.join("scene.toml"), scene).unwrap();
-    load_scene(&dir.join("scene.toml"))
+    super::load_with_table(dir, scene, "fields/ep.csv", table)
 }
 
 #[test]

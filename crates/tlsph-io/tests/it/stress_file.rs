@@ -1,9 +1,8 @@
 //! `initial_stress_file`: an initial stress field read from a CSV table of sample points.
 
 use std::fmt::Write as _;
-use std::fs;
 use std::path::Path;
-use tlsph_io::{load_scene, DimensionModel, SceneError};
+use tlsph_io::{DimensionModel, SceneError};
 use tlsph_math::Tensor3;
 use tlsph_solver::{Model, Simulation};
 
@@ -55,10 +54,7 @@ initial_stress_gradient = { yy = [0.0, 0.01] }";
 
 /// Writes `scene` and `table` (as `stress/field.csv`) into `dir` and loads the scene.
 fn load_with_table(dir: &Path, scene: &str, table: &str) -> Result<tlsph_io::Scene, SceneError> {
-    fs::create_dir_all(dir.join("stress")).unwrap();
-    fs::write(dir.join("stress/field.csv"), table).unwrap();
-    fs::write(dir.join("scene.toml"), scene).unwrap();
-    load_scene(&dir.join("scene.toml"))
+    super::load_with_table(dir, scene, "stress/field.csv", table)
 }
 
 fn model_2d(scene: tlsph_io::Scene) -> Model<2> {

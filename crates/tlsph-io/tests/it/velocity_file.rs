@@ -51,10 +51,7 @@ const KEY: &str = "initial_velocity_file = { path = \"fields/velocity.csv\" }";
 
 /// Writes `scene` and `table` (as `fields/velocity.csv`) into `dir` and loads the scene.
 fn load_with_table(dir: &Path, scene: &str, table: &str) -> Result<tlsph_io::Scene, SceneError> {
-    fs::create_dir_all(dir.join("fields")).unwrap();
-    fs::write(dir.join("fields/velocity.csv"), table).unwrap();
-    fs::write(dir.join("scene.toml"), scene).unwrap();
-    load_scene(&dir.join("scene.toml"))
+    super::load_with_table(dir, scene, "fields/velocity.csv", table)
 }
 
 fn model_1d(scene: tlsph_io::Scene) -> Model<1> {
