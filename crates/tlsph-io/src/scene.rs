@@ -1452,7 +1452,14 @@ fn build_body<const D: usize>(
     }
     let initial_plastic_strains =
         initial_plastic_strains::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
-    let plastic_strain_of = |k: usize| initial_plastic_strains.as_ref().map_or(0.0, |e| e[k]);
+    // Each particle's ε̄p for the yield checks below; `None` where it is not known (its table
+    // is not read, for `tlsph particles`), and then no yield check is made.
+    let plastic_strain_unknown = b.initial_plastic_strain_file.is_some() && !ctx.read_field_tables;
+    let plastic_strain_of = |k: usize| match &initial_plastic_strains {
+        Some(strains) => Some(strains[k]),
+        None if plastic_strain_unknown => None,
+        None => Some(0.0),
+    };
     let initial_stress = match &b.initial_stress {
         Some(t) => Some(initial_stress::<D>(
             ctx,
@@ -1461,7 +1468,7 @@ fn build_body<const D: usize>(
             &materials[material],
             (0..positions.len())
                 .map(plastic_strain_of)
-                .fold(f64::INFINITY, f64::min),
+                .try_fold(f64::INFINITY, |least, e| Some(least.min(e?))),
         )?),
         None => None,
     };
@@ -1528,7 +1535,7 @@ fn initial_stress<const D: usize>(
     table: &Spanned<StressComponents>,
     field: &str,
     material: &MaterialDescription,
-    least_plastic_strain: f64,
+    least_plastic_strain: Option<f64>,
 ) -> Result<tlsph_math::Tensor3, SceneError> {
     let c = table.get_ref();
     let span = table.span();
@@ -1540,10 +1547,9 @@ fn initial_stress<const D: usize>(
     }
     stress_is_not_state(ctx, &span, field, material)?;
     let stress = tlsph_math::Tensor3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    if let Some((equivalent, yield_stress)) = material
-        .model
-        .outside_yield_surface(&stress, least_plastic_strain)
-    {
+    let outside = least_plastic_strain
+        .and_then(|e| Some((e, material.model.outside_yield_surface(&stress, e)?)));
+    if let Some((least_plastic_strain, (equivalent, yield_stress))) = outside {
         return Err(ctx.error(
             &span,
             field,
@@ -1568,7 +1574,7 @@ fn initial_stress_gradient<const D: usize>(
     material: &MaterialDescription,
     at_origin: tlsph_math::Tensor3,
     positions: &[Vector<D>],
-    plastic_strain_of: impl Fn(usize) -> f64,
+    plastic_strain_of: impl Fn(usize) -> Option<f64>,
 ) -> Result<[tlsph_math::Tensor3; D], SceneError> {
     let c = table.get_ref();
     let span = table.span();
@@ -1613,8 +1619,9 @@ fn initial_stress_gradient<const D: usize>(
 }
 
 /// Checks that the initial stress `stress_of(k)` of each particle k at `positions` lies on or
-/// inside the initial yield surface of `material`; the error names the first particle that
-/// does not, and where its stress came from (`source(k)`, formatted only then).
+/// inside the yield surface of `material` at its initial plastic strain `plastic_strain_of(k)`
+/// (no check where that is `None`, not known); the error names the first particle that does
+/// not, and where its stress came from (`source(k)`, formatted only then).
 #[allow(clippy::too_many_arguments)]
 fn within_initial_yield<const D: usize>(
     ctx: &Context<'_>,
@@ -1623,11 +1630,13 @@ fn within_initial_yield<const D: usize>(
     material: &MaterialDescription,
     positions: &[Vector<D>],
     stress_of: impl Fn(usize) -> tlsph_math::Tensor3,
-    plastic_strain_of: impl Fn(usize) -> f64,
+    plastic_strain_of: impl Fn(usize) -> Option<f64>,
     source: impl Fn(usize) -> String,
 ) -> Result<(), SceneError> {
     for (k, x) in positions.iter().enumerate() {
-        let plastic_strain = plastic_strain_of(k);
+        let Some(plastic_strain) = plastic_strain_of(k) else {
+            continue;
+        };
         if let Some((equivalent, yield_stress)) = material
             .model
             .outside_yield_surface(&stress_of(k), plastic_strain)
@@ -1669,7 +1678,7 @@ fn initial_stress_file<const D: usize>(
     material: &MaterialDescription,
     spacing: f64,
     positions: &[Vector<D>],
-    plastic_strain_of: impl Fn(usize) -> f64,
+    plastic_strain_of: impl Fn(usize) -> Option<f64>,
 ) -> Result<Vec<tlsph_math::Tensor3>, SceneError> {
     let (samples, mapping, path) = mapped_field_table(
         ctx,

@@ -183,6 +183,12 @@ fn a_plastic_strain_table_is_mapped_to_the_particles() {
     assert!(model_1d(scene.unwrap()).bodies[0]
         .initial_plastic_strains
         .is_none());
+    // Nor is a stress above the virgin yield stress refused there: without the table the
+    // particles' yield stress is not known.
+    let key = "initial_plastic_strain_file = { path = \"fields/ep.csv\" }";
+    let stressed = rod(&format!("{key}\ninitial_stress = {{ xx = -0.0055 }}"));
+    fs::write(dir.path().join("scene.toml"), stressed).unwrap();
+    assert!(tlsph_io::load_scene_without_field_tables(&dir.path().join("scene.toml")).is_ok());
 }
 
 #[test]
