@@ -1,8 +1,9 @@
 //! Initial fields read from CSV tables of sample points (`initial_stress_file`,
-//! `initial_velocity_file`, `initial_plastic_strain_file`), each particle given the values of its nearest sample or of a
-//! linear moving-least-squares fit over the samples around it (ours, not in the theses, which
-//! start from rest or from uniform or linear fields). Typical sources: a
-//! residual stress or a velocity field computed by another code, or a field measured on a grid.
+//! `initial_velocity_file`, `initial_plastic_strain_file`), each particle given the values of
+//! its nearest sample or of a linear moving-least-squares fit over the samples around it (ours,
+//! not in the theses, which start from rest or from uniform or linear fields). Typical sources:
+//! a residual stress, a velocity or a plastic strain field computed by another code, or a
+//! field measured on a grid.
 
 use std::path::Path;
 use tlsph_math::Vector;
