@@ -149,10 +149,7 @@ impl StrengthModel {
     pub fn quasi_static_yield_stress(&self, plastic_strain: f64) -> f64 {
         match self {
             StrengthModel::VonMises(m) => m.yield_stress(plastic_strain),
-            StrengthModel::JohnsonCook { model, .. } => {
-                let p = model.parameters();
-                p.a + p.b * plastic_strain.max(0.0).powf(p.n)
-            }
+            StrengthModel::JohnsonCook { model, .. } => model.hardening(plastic_strain),
         }
     }
 }

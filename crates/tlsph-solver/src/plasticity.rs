@@ -58,17 +58,16 @@ impl PlasticState {
         }
     }
 
-    /// Sets the effective plastic strain of local particle `k`; `false` (and nothing set) if
-    /// the body's material has no plastic state.
-    pub fn set_plastic_strain(&mut self, k: usize, plastic_strain: f64) -> bool {
+    /// Sets the effective plastic strain of local particle `k` (nothing for a body whose
+    /// material has no plastic state).
+    pub fn set_plastic_strain(&mut self, k: usize, plastic_strain: f64) {
         match self {
-            PlasticState::None => return false,
+            PlasticState::None => {}
             PlasticState::Strain(v) => v[k][0] = plastic_strain,
             PlasticState::StrainTemperature(v) => v[k][0] = plastic_strain,
             PlasticState::StrainDamage(v) => v[k][0] = plastic_strain,
             PlasticState::StrainTemperatureDamage(v) => v[k][0] = plastic_strain,
         }
-        true
     }
 
     /// Effective plastic strain of local particle `k`, if the body has one.

@@ -1369,12 +1369,8 @@ impl<const D: usize> Simulation<D> {
                 message,
             })
         };
-        let Some(info) = self.bodies.get(body) else {
-            return refuse(format!("body #{body} does not exist"));
-        };
-        if self.steps_done > 0 {
-            return refuse("must be set before the first step".into());
-        }
+        let range = self.initial_field_range(body, "initial_stress", stresses.len(), "stresses")?;
+        let info = &self.bodies[body];
         let material = &self.materials[info.material];
         let stress_from_state = self.config.stress_update == StressUpdate::GreenLagrange
             || matches!(material, MaterialModel::ElasticPlastic(m) if matches!(m.pressure, crate::model::PressureModel::Eos(_)))
@@ -1385,25 +1381,8 @@ impl<const D: usize> Simulation<D> {
                 info.name
             ));
         }
-        let range = info.range.clone();
-        if stresses.len() != range.len() {
-            return refuse(format!(
-                "body `{}` has {} particles but {} stresses were given",
-                info.name,
-                range.len(),
-                stresses.len()
-            ));
-        }
         for (k, stress) in stresses.iter().enumerate() {
-            let at = || {
-                let x = self.particles.positions0[range.start + k];
-                let text: Vec<String> = x.iter().map(|c| format!("{c:e}")).collect();
-                format!(
-                    "body `{}`, particle {k} at [{}]",
-                    info.name,
-                    text.join(", ")
-                )
-            };
+            let at = || self.particle_label(body, k);
             if !(stress.iter().all(|x| x.is_finite())
                 && (stress - stress.transpose()).norm() == 0.0)
             {
@@ -1446,34 +1425,21 @@ impl<const D: usize> Simulation<D> {
                 message,
             })
         };
-        let Some(info) = self.bodies.get(body) else {
-            return refuse(format!("body #{body} does not exist"));
-        };
-        if self.steps_done > 0 {
-            return refuse("must be set before the first step".into());
-        }
+        self.initial_field_range(
+            body,
+            "initial_plastic_strain",
+            strains.len(),
+            "plastic strains",
+        )?;
+        let info = &self.bodies[body];
         let MaterialModel::ElasticPlastic(material) = &self.materials[info.material] else {
             return refuse(format!(
                 "body `{}`: its material has no plastic strain (only elastic–plastic ones do)",
                 info.name
             ));
         };
-        if strains.len() != info.range.len() {
-            return refuse(format!(
-                "body `{}` has {} particles but {} plastic strains were given",
-                info.name,
-                info.range.len(),
-                strains.len()
-            ));
-        }
         for (k, &strain) in strains.iter().enumerate() {
-            let x = self.particles.positions0[info.range.start + k];
-            let text: Vec<String> = x.iter().map(|c| format!("{c:e}")).collect();
-            let at = format!(
-                "body `{}`, particle {k} at [{}]",
-                info.name,
-                text.join(", ")
-            );
+            let at = self.particle_label(body, k);
             if !(strain.is_finite() && strain >= 0.0) {
                 return refuse(format!(
                     "{at}: the plastic strain must be a finite number ≥ 0, got {strain}"
@@ -1491,6 +1457,45 @@ impl<const D: usize> Simulation<D> {
             self.plastic[body].set_plastic_strain(k, strain);
         }
         Ok(())
+    }
+
+    /// The particle range of body `body` for a setter of an initial field given per particle
+    /// (`field` in errors): the body must exist, no step may have been taken yet, and `given`
+    /// values (`what`, e.g. "stresses") must match its particles one to one.
+    fn initial_field_range(
+        &self,
+        body: usize,
+        field: &'static str,
+        given: usize,
+        what: &str,
+    ) -> Result<Range<usize>, SetupError> {
+        let refuse = |message: String| Err(SetupError::InvalidConfig { field, message });
+        let Some(info) = self.bodies.get(body) else {
+            return refuse(format!("body #{body} does not exist"));
+        };
+        if self.steps_done > 0 {
+            return refuse("must be set before the first step".into());
+        }
+        if given != info.range.len() {
+            return refuse(format!(
+                "body `{}` has {} particles but {given} {what} were given",
+                info.name,
+                info.range.len(),
+            ));
+        }
+        Ok(info.range.clone())
+    }
+
+    /// "body `name`, particle k at [X]" for body `body`'s particle `k` (local index), in errors.
+    fn particle_label(&self, body: usize, k: usize) -> String {
+        let info = &self.bodies[body];
+        let x = self.particles.positions0[info.range.start + k];
+        let text: Vec<String> = x.iter().map(|c| format!("{c:e}")).collect();
+        format!(
+            "body `{}`, particle {k} at [{}]",
+            info.name,
+            text.join(", ")
+        )
     }
 
     /// Overwrites the displacements u (one per particle). Before the first step this sets an

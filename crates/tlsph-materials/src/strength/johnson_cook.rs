@@ -116,9 +116,10 @@ impl JohnsonCookStrength {
             * self.thermal_factor(temperature)
     }
 
-    /// Strain-hardening part A + B ε̄p^n.
+    /// Strain-hardening part A + B ε̄p^n \[Pa\]: the flow stress at the reference strain rate
+    /// and room temperature (numerics.md §8.5). A negative plastic strain is read as 0.
     #[inline]
-    fn hardening(&self, plastic_strain: f64) -> f64 {
+    pub fn hardening(&self, plastic_strain: f64) -> f64 {
         self.p.a + self.p.b * plastic_strain.max(0.0).powf(self.p.n)
     }
 
