@@ -17,7 +17,8 @@
 //!   unbounded length (a roller), [`FiniteCylinder`]: a solid cylinder with flat ends (a
 //!   cylindrical punch, a pin), [`RigidBox`]: a rectangle or a rectangular block with sharp
 //!   or rounded edges (a rectangular punch, a die, a step), [`RigidCone`]: a cone (a wedge in
-//!   2D) with a sharp or rounded tip (a conical or wedge indenter), all behind
+//!   2D) with a sharp or rounded tip (a conical or wedge indenter), [`RigidPyramid`]: a
+//!   regular pyramid with a sharp or rounded tip (a Vickers or Berkovich indenter), all behind
 //!   [`WallGeometry`]; and their Coulomb friction
 //!   [`wall_friction_acceleration`], which on a spinning wall reads the velocity
 //!   [`spin_velocity`] of the wall's [`surface_point`]. Both friction laws take
@@ -58,8 +59,8 @@ pub use tlsph_kernels::{AnyKernel, Kernel, KernelKind};
 pub use tlsph_math::{PlaneReflections, Vector};
 pub use wall::{
     spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
-    FrictionCoefficients, RigidBall, RigidBox, RigidCone, RigidCylinder, RigidPlane, WallGeometry,
-    WALL_STIFFNESS_FACTOR,
+    FrictionCoefficients, RigidBall, RigidBox, RigidCone, RigidCylinder, RigidPlane, RigidPyramid,
+    WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 
 /// Verlet skin of a candidate list as a fraction of the smallest contact distance d0: the list

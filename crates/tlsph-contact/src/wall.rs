@@ -663,6 +663,177 @@ impl<const D: usize> RigidCone<D> {
 
 wall_by_distance!(RigidCone);
 
+/// A rigid regular pyramid (ours, not in the theses; 3D): the solid pyramid of N ≥ 3 faces
+/// whose tip is at `tip` and which opens along the unit axis â, unbounded towards its base,
+/// every face at the half-angle α to the axis (between the axis and the face's centre line),
+/// with its tip optionally rounded to a sphere of radius ρ. E.g. a Vickers indenter (N = 4,
+/// α = 68°), a Berkovich indenter (N = 3, α = 65.27°), a cube corner (N = 3, α = 35.26°).
+///
+/// With the frame (ê₁, ê₂ = â × ê₁, â), ê₁ pointing from the axis towards the middle of the
+/// first face, face j faces r̂_j = cos θ_j ê₁ + sin θ_j ê₂, θ_j = 2πj/N, and has the outward
+/// unit normal n̂_j = r̂_j cos α − â sin α; edge j, between faces j and j + 1, runs from the apex
+/// along ê_j ∝ â + r̂ tan α / cos(π/N), r̂ at θ_j + π/N. The sharp pyramid is the convex cone
+/// {q : n̂_j·q ≤ 0 for every j} with q = x − a the offset from its apex a = tip + ρ â; the
+/// rounded one is the set of points within ρ of it, so its signed distance is the sharp one's
+/// less ρ, and its foremost point stays at `tip`. The sharp pyramid's signed distance is
+/// s = max_j n̂_j·q ≤ 0 inside (the nearest face, pushed out along its normal), and outside the
+/// distance to the nearest point of its surface: the foot q − (n̂_j·q) n̂_j on face j where
+/// that foot lies within the face (on the inner side of both neighbouring faces), or else the
+/// nearest point of an edge (or the apex). The push along the unit vector from that point to
+/// x is the gradient of the spring's ½ k δ², δ = Δx/2 − s.
+#[derive(Debug, Clone)]
+pub struct RigidPyramid<const D: usize> {
+    /// Apex of the sharp pyramid, tip + ρ â \[m\].
+    apex: Vector<D>,
+    /// The faces' outward unit normals n̂_j.
+    face_normals: Vec<Vector<D>>,
+    /// The edges' unit directions ê_j from the apex (edge j between faces j and j + 1).
+    edges: Vec<Vector<D>>,
+    /// ρ \[m\] (0: a sharp tip).
+    tip_radius: f64,
+    springs: PenaltySprings,
+}
+
+impl<const D: usize> RigidPyramid<D> {
+    /// The pyramid with its tip at `tip`, opening along `axis`, its first face towards
+    /// `face_direction` (at right angles to the axis; neither need be unit), of `sides` N
+    /// faces at the half-angle `half_angle` α (radians) to the axis and with its tip rounded
+    /// to `tip_radius` ρ, for particles with smoothing lengths `h`, sound speeds `c0` and
+    /// spacings `dx` (one entry per particle). An error says why there is none: not a 3D
+    /// scene, fewer than 3 sides, an axis or a face direction zero or not finite, the two not
+    /// at right angles (to 1e-9 in the cosine), α not within 0 < α < π/2, ρ not finite and ≥ 0.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        tip: Vector<D>,
+        axis: Vector<D>,
+        face_direction: Vector<D>,
+        sides: usize,
+        half_angle: f64,
+        tip_radius: f64,
+        (h, c0, dx): (&[f64], &[f64], &[f64]),
+    ) -> Result<Self, String> {
+        let (axis, first_face) = Self::frame(axis, face_direction)?;
+        if sides < 3 {
+            return Err(format!("a pyramid needs at least 3 sides, got {sides}"));
+        }
+        if !(half_angle > 0.0 && half_angle < std::f64::consts::FRAC_PI_2) {
+            return Err(format!(
+                "a pyramid's half-angle must lie between 0 and 90°, got {}°",
+                half_angle.to_degrees()
+            ));
+        }
+        if !(tip_radius.is_finite() && tip_radius >= 0.0) {
+            return Err(format!(
+                "a pyramid's tip radius must be finite and ≥ 0, got {tip_radius}"
+            ));
+        }
+        let second = axis.cross(&first_face);
+        let radial = |angle: f64| first_face * angle.cos() + second * angle.sin();
+        let (sin, cos) = half_angle.sin_cos();
+        let sector = std::f64::consts::TAU / sides as f64;
+        let edge_slope = half_angle.tan() / (0.5 * sector).cos();
+        let in_d = |v: Vector3| Vector::<D>::from_fn(|k, _| v[k]);
+        let face_normals = (0..sides)
+            .map(|j| in_d(radial(j as f64 * sector) * cos - axis * sin))
+            .collect();
+        let edges = (0..sides)
+            .map(|j| in_d((axis + radial((j as f64 + 0.5) * sector) * edge_slope).normalize()))
+            .collect();
+        Ok(Self {
+            apex: tip + in_d(axis) * tip_radius,
+            face_normals,
+            edges,
+            tip_radius,
+            springs: PenaltySprings::new(h, c0, dx),
+        })
+    }
+
+    /// The unit axis â and the unit direction ê₁ towards the first face from `axis` and
+    /// `face_direction`, or why there are none (see [`RigidPyramid::new`]).
+    fn frame(axis: Vector<D>, face_direction: Vector<D>) -> Result<(Vector3, Vector3), String> {
+        if D != 3 {
+            return Err(format!(
+                "a pyramid needs a 3D scene (in 2D a wedge is a cone), got {D}D"
+            ));
+        }
+        let unit = |v: Vector<D>, name: &str| {
+            let length = v.norm();
+            if length > 0.0 && length.is_finite() {
+                Ok(vector_to_3d(&(v / length)))
+            } else {
+                Err(format!("a pyramid's {name} must be finite and non-zero"))
+            }
+        };
+        let axis = unit(axis, "axis")?;
+        let face = unit(face_direction, "face direction")?;
+        let cosine = axis.dot(&face);
+        if cosine.abs() > 1e-9 {
+            return Err(format!(
+                "a pyramid's face direction must be at right angles to its axis, their cosine is {cosine:.3e}"
+            ));
+        }
+        // Remove the round-off along the axis so the frame is orthonormal.
+        Ok((axis, (face - axis * cosine).normalize()))
+    }
+
+    /// The faces' outward unit normals n̂_j, face j towards θ_j = 2πj/N from ê₁.
+    pub fn face_normals(&self) -> &[Vector<D>] {
+        &self.face_normals
+    }
+
+    /// The edges' unit directions ê_j from the apex, edge j between faces j and j + 1: the
+    /// sharp pyramid is the apex plus every non-negative combination of them.
+    pub fn edges(&self) -> &[Vector<D>] {
+        &self.edges
+    }
+
+    /// The apex of the sharp pyramid whose rounding this is, tip + ρ â (the tip itself when
+    /// sharp) \[m\].
+    pub fn apex(&self) -> Vector<D> {
+        self.apex
+    }
+
+    /// Signed distance s from `x` to the pyramid's surface (negative inside) and the unit
+    /// outward direction from the nearest surface point towards `x` (the nearest face's
+    /// outward normal inside; the first such face on a tie).
+    #[inline]
+    pub fn distance(&self, x: Vector<D>) -> (f64, Vector<D>) {
+        let offset = x - self.apex;
+        let heights = |j: usize| self.face_normals[j].dot(&offset);
+        let n = self.face_normals.len();
+        let (mut nearest, mut height) = (0, heights(0));
+        for j in 1..n {
+            let h = heights(j);
+            if h > height {
+                (nearest, height) = (j, h);
+            }
+        }
+        if height <= 0.0 {
+            return (height - self.tip_radius, self.face_normals[nearest]);
+        }
+        let mut best = (f64::INFINITY, self.face_normals[nearest]);
+        for j in 0..n {
+            let h = heights(j);
+            let foot = offset - self.face_normals[j] * h;
+            let within = |k: usize| self.face_normals[k].dot(&foot) <= 0.0;
+            if h > 0.0 && h < best.0 && within((j + n - 1) % n) && within((j + 1) % n) {
+                best = (h, self.face_normals[j]);
+            }
+        }
+        for edge in &self.edges {
+            let along = offset.dot(edge).max(0.0);
+            let away = offset - edge * along;
+            let s = away.norm();
+            if s < best.0 {
+                best = (s, away / s);
+            }
+        }
+        (best.0 - self.tip_radius, best.1)
+    }
+}
+
+wall_by_distance!(RigidPyramid);
+
 /// Coulomb friction coefficients of a surface: the kinetic μ_k of sliding, the static
 /// μ_s ≥ μ_k that bounds the force holding a particle at rest, and how the coefficient of a
 /// sliding contact falls from μ_s to μ_k with its sliding speed (numerics.md §13 `[C]`).

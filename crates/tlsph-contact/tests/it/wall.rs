@@ -1,12 +1,12 @@
 //! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
-//! cylinder, the finite cylinder, the box, the cone), the surface point and spin velocity their
+//! cylinder, the finite cylinder, the box, the cone, the pyramid), the surface point and spin velocity their
 //! friction reads, and their Coulomb friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
     spin_velocity, surface_point, wall_friction_acceleration, FiniteCylinder, FlatDisc,
-    FrictionCoefficients, RigidBall, RigidBox, RigidCone, RigidCylinder, RigidPlane, Vector,
-    WallGeometry, WALL_STIFFNESS_FACTOR,
+    FrictionCoefficients, RigidBall, RigidBox, RigidCone, RigidCylinder, RigidPlane, RigidPyramid,
+    Vector, WallGeometry, WALL_STIFFNESS_FACTOR,
 };
 use tlsph_math::Vector3;
 
@@ -739,4 +739,229 @@ fn a_spinning_surface_moves_at_omega_cross_its_offset_from_the_axis() {
     assert!(v.dot(&omega).abs() < 1e-14 && v.dot(&offset).abs() < 1e-14);
     let r = (offset - omega * (offset.dot(&omega) / 9.0)).norm();
     assert_relative_eq!(v.norm(), 3.0 * r, max_relative = 1e-14);
+}
+
+/// A Vickers pyramid (4 faces at α = 68° to the axis) and a Berkovich (3 faces at 65.27°),
+/// each with its tip at (1, 0, 0), opening along (0, 1, 1)/√2, its first face towards x,
+/// sharp or with its tip rounded to `tip_radius`; particle contact radius ½.
+fn pyramids(tip_radius: f64) -> [(RigidPyramid<3>, usize, f64); 2] {
+    [(4, 68.0), (3, 65.27)].map(|(sides, degrees): (usize, f64)| {
+        let pyramid = RigidPyramid::<3>::new(
+            Vector::<3>::new(1.0, 0.0, 0.0),
+            Vector::<3>::new(0.0, 2.0, 2.0),
+            Vector::<3>::x() * 3.0,
+            sides,
+            degrees.to_radians(),
+            tip_radius,
+            (&[1.2], &[3.0], &[1.0]),
+        )
+        .unwrap();
+        (pyramid, sides, degrees.to_radians())
+    })
+}
+
+/// The faces' outward normals and the edges' directions of the sharp pyramid of `sides`
+/// faces at `alpha` to the axis â, its first face towards ê₁ (frame ê₁, ê₂ = â × ê₁, â), built
+/// from its corners: at unit height the cross-section is the regular polygon of inradius
+/// tan α with a side's middle towards ê₁, so corner k lies at the circumradius
+/// tan α / cos(π/N), half a side's angle past face k; face k is spanned by corners k − 1 and k.
+fn pyramid_from_corners(
+    sides: usize,
+    alpha: f64,
+    (e1, e2, axis): (Vector<3>, Vector<3>, Vector<3>),
+) -> (Vec<Vector<3>>, Vec<Vector<3>>) {
+    let step = std::f64::consts::TAU / sides as f64;
+    let circumradius = alpha.tan() / (0.5 * step).cos();
+    let corners: Vec<Vector<3>> = (0..sides)
+        .map(|k| {
+            let angle = (k as f64 + 0.5) * step;
+            axis + (e1 * angle.cos() + e2 * angle.sin()) * circumradius
+        })
+        .collect();
+    let normals = (0..sides)
+        .map(|k| {
+            let before = corners[(k + sides - 1) % sides];
+            // Corners run counter-clockwise about â, so before × corner points inwards.
+            -before.cross(&corners[k]).normalize()
+        })
+        .collect();
+    (normals, corners.iter().map(|c| c.normalize()).collect())
+}
+
+#[test]
+fn a_pyramid_pushes_a_particle_out_from_its_nearest_surface_point() {
+    // Outside, the push must come from the Euclidean projection p* of the particle's centre x
+    // onto the solid pyramid: p* on its surface and x − p* making no acute angle with any
+    // direction into the solid from p* (towards the apex and along every edge, which span
+    // it). Inside, from the nearest face. Checked on a lattice of points round the tip,
+    // beside faces and edges, with the faces and edges built from the corners, not as the
+    // wall builds them.
+    let axis = Vector::<3>::new(0.0, 1.0, 1.0).normalize();
+    let frame = (Vector::<3>::x(), axis.cross(&Vector::<3>::x()), axis);
+    let apex = Vector::<3>::new(1.0, 0.0, 0.0);
+    let (mut outside, mut inside) = (0, 0);
+    for (pyramid, sides, alpha) in pyramids(0.0) {
+        let (normals, edges) = pyramid_from_corners(sides, alpha, frame);
+        for (n, m) in normals.iter().zip(pyramid.face_normals()) {
+            assert_relative_eq!(n, m, epsilon = 1e-14);
+        }
+        for (e, f) in edges.iter().zip(pyramid.edges()) {
+            assert_relative_eq!(e, f, epsilon = 1e-14);
+        }
+        let depth = |y: Vector<3>| {
+            normals
+                .iter()
+                .map(|n| n.dot(&(y - apex)))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        for (a, b, c) in
+            (0..9).flat_map(|a| (0..9).flat_map(move |b| (0..7).map(move |c| (a, b, c))))
+        {
+            let q = Vector::<3>::new(a as f64 - 4.0, b as f64 - 4.0, c as f64 - 2.0) * 0.37
+                + Vector::<3>::new(0.011, 0.007, 0.003);
+            let x = apex + frame.0 * q.x + frame.1 * q.y + frame.2 * q.z;
+            let (s, n) = pyramid.distance(x);
+            assert_relative_eq!(n.norm(), 1.0, epsilon = 1e-13);
+            let foot = x - n * s;
+            assert!(
+                depth(foot).abs() < 1e-12,
+                "{x:?}: foot {foot:?} off the surface"
+            );
+            if s > 0.0 {
+                outside += 1;
+                let away = x - foot;
+                assert!(away.dot(&(apex - foot)) < 1e-12, "{x:?}");
+                for e in &edges {
+                    assert!(away.dot(e) < 1e-12, "{x:?}: along edge {e:?}");
+                }
+            } else {
+                inside += 1;
+                assert_relative_eq!(s, depth(x), epsilon = 1e-14);
+            }
+        }
+    }
+    assert!(
+        outside > 500 && inside > 50,
+        "{outside} outside, {inside} inside"
+    );
+}
+
+#[test]
+fn a_rounded_pyramid_is_the_sharp_one_grown_by_its_tip_radius_and_pushes_down_its_energy_gradient()
+{
+    // Rounded to ρ = 0.4, the tip stays at `point`: the sharp pyramid whose rounding it is has
+    // its apex at tip + ρ â, and the surface is everything within ρ of it, so s = s_sharp − ρ.
+    let axis = Vector::<3>::new(0.0, 1.0, 1.0).normalize();
+    let tip = Vector::<3>::new(1.0, 0.0, 0.0);
+    let e1 = Vector::<3>::x();
+    let e2 = axis.cross(&e1);
+    for ((sharp, sides, alpha), (rounded, ..)) in pyramids(0.0).into_iter().zip(pyramids(0.4)) {
+        assert_eq!(rounded.apex(), tip + axis * 0.4);
+        // The foremost point is the tip: a particle 0.3 before it along the axis touches by
+        // δ = 0.2, pushed straight back.
+        let (delta, n) = rounded.contact(0, tip - axis * 0.3);
+        assert_relative_eq!(delta, 0.2, epsilon = 1e-14);
+        assert_relative_eq!(n, -axis, epsilon = 1e-14);
+        for x in [
+            tip + e1 * 2.0 + axis * 1.5,
+            tip - e2 * 0.7 + axis * 0.1,
+            tip + (e1 + e2) * 0.3 - axis * 0.2,
+        ] {
+            let shifted = x - axis * 0.4;
+            assert_relative_eq!(
+                rounded.distance(x).0,
+                sharp.distance(shifted).0 - 0.4,
+                epsilon = 1e-13
+            );
+            assert_relative_eq!(
+                rounded.distance(x).1,
+                sharp.distance(shifted).1,
+                epsilon = 1e-13
+            );
+        }
+        // Beside face 0, high up: 0.3 out along its normal from a point on its centre line.
+        let normal = e1 * alpha.cos() - axis * alpha.sin();
+        let on_face = tip + axis * 3.0 + e1 * (3.0 * alpha.tan());
+        assert_contact(
+            &sharp,
+            |y| sharp.distance(y).0,
+            on_face + normal * 0.3,
+            (0.2, normal),
+        );
+        // Past an edge (between faces 0 and 1): pushed away from the edge line, from a point
+        // 0.3 out along the edge's outward radial direction at right angles to it.
+        let radial = e1 * (std::f64::consts::PI / sides as f64).cos()
+            + e2 * (std::f64::consts::PI / sides as f64).sin();
+        let edge = sharp.edges()[0];
+        let out = (radial - edge * radial.dot(&edge)).normalize();
+        assert_contact(
+            &sharp,
+            |y| sharp.distance(y).0,
+            tip + edge * 2.5 + out * 0.3,
+            (0.2, out),
+        );
+        // The push is the gradient of ½ k δ²: beside a face, past an edge, round the tip and
+        // pushed in, sharp and rounded.
+        let points = [
+            on_face + normal * 0.2,
+            tip + edge * 2.5 + out * 0.2,
+            tip - axis * 0.2 + e1 * 0.05 + e2 * 0.03,
+            tip + axis * 2.0 + e1 * 0.1 + e2 * 0.05,
+        ];
+        assert_push_is_energy_gradient(&sharp, &points);
+        assert_push_is_energy_gradient(&rounded, &points.map(|x| x + axis * 0.2));
+    }
+}
+
+#[test]
+fn a_pyramid_needs_three_sides_a_face_direction_across_its_axis_and_a_3d_scene() {
+    let particles: (&[f64], &[f64], &[f64]) = (&[], &[], &[]);
+    let build = |axis: Vector<3>, face: Vector<3>, sides: usize, alpha: f64, rho: f64| {
+        RigidPyramid::<3>::new(
+            Vector::<3>::zeros(),
+            axis,
+            face,
+            sides,
+            alpha,
+            rho,
+            particles,
+        )
+        .map(|_| ())
+    };
+    let (z, x) = (Vector::<3>::z(), Vector::<3>::x());
+    assert!(build(z, x, 4, 1.2, 0.0).is_ok());
+    let refused = |built: Result<(), String>, expected: &str| match built {
+        Err(why) => assert!(why.contains(expected), "{why}"),
+        Ok(()) => panic!("expected `{expected}`"),
+    };
+    refused(build(z, x, 2, 1.2, 0.0), "at least 3 sides");
+    refused(build(z, x + z * 1e-6, 4, 1.2, 0.0), "at right angles");
+    refused(
+        build(Vector::<3>::zeros(), x, 4, 1.2, 0.0),
+        "axis must be finite",
+    );
+    refused(
+        build(z, z * f64::NAN, 4, 1.2, 0.0),
+        "face direction must be finite",
+    );
+    for bad in [0.0, std::f64::consts::FRAC_PI_2, f64::NAN] {
+        refused(
+            build(z, x, 4, bad, 0.0),
+            "half-angle must lie between 0 and 90°",
+        );
+    }
+    refused(
+        build(z, x, 4, 1.2, -0.1),
+        "tip radius must be finite and ≥ 0",
+    );
+    let flat = RigidPyramid::<2>::new(
+        Vector::<2>::zeros(),
+        Vector::<2>::y(),
+        Vector::<2>::x(),
+        4,
+        1.2,
+        0.0,
+        (&[], &[], &[]),
+    );
+    assert!(flat.unwrap_err().contains("needs a 3D scene"));
 }
