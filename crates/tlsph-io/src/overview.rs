@@ -176,6 +176,11 @@ fn set_up_notes<const D: usize>(model: &Model<D>) -> Vec<String> {
                     "its tip and flanks, pressed into a body, can drive the particle \
                      lattice's zig-zag mode and pierce the surface",
                 ),
+                WallShape::Pyramid { .. } => (
+                    "a pyramid",
+                    "its tip, edges and faces, pressed into a body, can drive the particle \
+                     lattice's zig-zag mode and pierce the surface",
+                ),
                 _ => continue,
             };
             notes.push(format!(

@@ -124,16 +124,16 @@ pub(crate) struct SymmetryPlaneTable {
 }
 
 /// `[[wall]]`: a rigid plane, or a disc, ball or cylinder of `radius`, or a box of `size`
-/// (optionally with an `edge_radius`), or a cone of `half_angle` (optionally with a
-/// `tip_radius`),
-/// frictionless unless `friction` is given, fixed unless `velocity` is given (with an optional start-up ramp or amplitude).
+/// (optionally with an `edge_radius`), or a cone or a pyramid of `half_angle` (optionally with
+/// a `tip_radius`), frictionless unless `friction` is given, fixed unless `velocity` is given
+/// (with an optional start-up ramp or amplitude).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct WallTable {
     pub name: Spanned<String>,
     pub point: Spanned<Vec<f64>>,
-    /// Required by a plane or a disc; optional for a box; none for a ball, a cylinder or a
-    /// cone.
+    /// Required by a plane or a disc; optional for a box; none for a ball, a cylinder, a cone
+    /// or a pyramid.
     pub normal: Option<Spanned<Vec<f64>>>,
     pub friction: Option<Spanned<f64>>,
     pub static_friction: Option<Spanned<f64>>,
@@ -143,14 +143,14 @@ pub(crate) struct WallTable {
     pub ramp_shape: Option<Spanned<String>>,
     pub amplitude: Option<Spanned<Vec<Vec<f64>>>>,
     pub amplitude_shape: Option<Spanned<String>>,
-    /// "plane" (default), "disc" (the default with `radius`), "ball", "cylinder", "box" or
-    /// "cone".
+    /// "plane" (default), "disc" (the default with `radius`), "ball", "cylinder", "box",
+    /// "cone" or "pyramid".
     pub shape: Option<Spanned<String>>,
     /// Finite size: the disc (segment in 2D) or the ball of this radius about `point`, or the
     /// cylinder of this radius about its axis.
     pub radius: Option<Spanned<f64>>,
-    /// Direction of a cylinder's axis (through `point`), of a cone's (from its tip at `point`
-    /// into it), or of a spinning ball's spin axis.
+    /// Direction of a cylinder's axis (through `point`), of a cone's or a pyramid's (from its
+    /// tip at `point` into it), or of a spinning ball's spin axis.
     pub axis: Option<Spanned<Vec<f64>>>,
     /// A cylinder's length, centred at `point` (none: unbounded).
     pub length: Option<Spanned<f64>>,
@@ -159,10 +159,15 @@ pub(crate) struct WallTable {
     pub size: Option<Spanned<Vec<f64>>>,
     /// The radius to which a box's edges and corners are rounded (none: sharp).
     pub edge_radius: Option<Spanned<f64>>,
-    /// A cone's half-angle between its axis and its flanks \[degrees\].
+    /// A cone's half-angle between its axis and its flanks, or a pyramid's between its axis
+    /// and each face's centre line \[degrees\].
     pub half_angle: Option<Spanned<f64>>,
-    /// The radius to which a cone's tip is rounded (none: sharp).
+    /// The radius to which a cone's or a pyramid's tip is rounded (none: sharp).
     pub tip_radius: Option<Spanned<f64>>,
+    /// A pyramid's number of faces (4 Vickers, 3 Berkovich).
+    pub sides: Option<Spanned<i64>>,
+    /// Direction from a pyramid's axis towards the middle of its first face.
+    pub face_direction: Option<Spanned<Vec<f64>>>,
     /// Angular speed ω of the wall about its own axis (right-handed): a plane's or a disc's
     /// normal, a cylinder's, a cone's or a ball's `axis`, z for a ball in 2D \[rad/s\].
     pub spin: Option<Spanned<f64>>,

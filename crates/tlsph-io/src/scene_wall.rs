@@ -1,6 +1,5 @@
-//! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder, box or cone with its friction and
-//! motion,
-//! checked against the bodies' starting positions and the symmetry planes (numerics.md §13
+//! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder, box, cone or pyramid with its
+//! friction and motion, checked against the bodies' starting positions and the symmetry planes (numerics.md §13
 //! `[C]`; the finite shapes are ours).
 
 use crate::scene::{axis_index, history_key, parse_amplitude, point_text, Context, SceneError};
@@ -9,6 +8,10 @@ use tlsph_math::{across, vector_to_3d, Vector, Vector3};
 use tlsph_solver::{
     BodyDescription, RampShape, VelocityRamp, WallDescription, WallMotion, WallShape,
 };
+
+/// Most faces a pyramid wall may have: its contact costs two dot products per face and
+/// particle, and a pyramid of many more faces is nearly a cone.
+const MAX_PYRAMID_SIDES: i64 = 100;
 
 /// The wall of table `w` named `name`, for `bodies` as placed and the scene's
 /// `symmetry_planes`.
@@ -82,7 +85,8 @@ pub(crate) fn build_wall<const D: usize>(
                 WallShape::Disc { .. }
                 | WallShape::Ball { .. }
                 | WallShape::Box { .. }
-                | WallShape::Cone { .. } => false,
+                | WallShape::Cone { .. }
+                | WallShape::Pyramid { .. } => false,
             };
             let sliding_across_a_mirror = symmetry_planes.iter().find(|p| {
                 axis_index(p.axis.get_ref()).is_some_and(|a| {
@@ -151,8 +155,8 @@ pub(crate) fn build_wall<const D: usize>(
 }
 
 /// The wall's shape from `shape`, `radius`, `normal`, `axis`, `length`, `size`, `edge_radius`,
-/// `half_angle` and `tip_radius`, and its normal as given (the last coordinate axis for a ball,
-/// a cylinder or a cone, which have none).
+/// `half_angle`, `tip_radius`, `sides` and `face_direction`, and its normal as given (the last
+/// coordinate axis for a ball, a cylinder, a cone or a pyramid, which have none).
 fn wall_shape<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
@@ -166,6 +170,7 @@ fn wall_shape<const D: usize>(
         Cylinder,
         Box,
         Cone,
+        Pyramid,
     }
     let default_kind = if w.radius.is_some() {
         Kind::Disc
@@ -184,6 +189,7 @@ fn wall_shape<const D: usize>(
             ("cylinder", Kind::Cylinder),
             ("box", Kind::Box),
             ("cone", Kind::Cone),
+            ("pyramid", Kind::Pyramid),
         ],
     )?;
     let shape_span = w.shape.as_ref().map_or(w.name.span(), |s| s.span());
@@ -197,6 +203,15 @@ fn wall_shape<const D: usize>(
             format!("a cylinder wall needs a 3D scene, got {D}D (in 2D, shape = \"ball\" is the cylinder in plane strain)"),
         ));
     }
+    if kind == Kind::Pyramid && D != 3 {
+        return Err(ctx.error(
+            &shape_span,
+            &key("shape"),
+            format!(
+                "a pyramid wall needs a 3D scene, got {D}D (in 2D, shape = \"cone\" is a wedge)"
+            ),
+        ));
+    }
     if matches!(kind, Kind::Box | Kind::Cone) && D < 2 {
         return Err(ctx.error(
             &shape_span,
@@ -205,12 +220,12 @@ fn wall_shape<const D: usize>(
         ));
     }
     let radius = match (&w.radius, kind) {
-        (None, Kind::Plane | Kind::Box | Kind::Cone) => 0.0,
-        (Some(r), Kind::Cone) => {
+        (None, Kind::Plane | Kind::Box | Kind::Cone | Kind::Pyramid) => 0.0,
+        (Some(r), Kind::Cone | Kind::Pyramid) => {
             return Err(ctx.error(
                 &r.span(),
                 &key("radius"),
-                "a cone wall has a `half_angle`, and a `tip_radius` if its tip is rounded, not a radius".into(),
+                "a cone or pyramid wall has a `half_angle`, and a `tip_radius` if its tip is rounded, not a radius".into(),
             ))
         }
         (Some(r), Kind::Box) => {
@@ -251,9 +266,12 @@ fn wall_shape<const D: usize>(
         }
         Ok(direction)
     };
-    // A ball, a cylinder or a cone has no normal; a box's is optional; a plane and a disc need
-    // one. The last axis stands in.
-    let radial = matches!(kind, Kind::Ball | Kind::Cylinder | Kind::Cone);
+    // A ball, a cylinder, a cone or a pyramid has no normal; a box's is optional; a plane and
+    // a disc need one. The last axis stands in.
+    let radial = matches!(
+        kind,
+        Kind::Ball | Kind::Cylinder | Kind::Cone | Kind::Pyramid
+    );
     let normal =
         match (&w.normal, radial) {
             (None, false) if kind == Kind::Box => {
@@ -264,7 +282,7 @@ fn wall_shape<const D: usize>(
             (Some(n), true) => return Err(ctx.error(
                 &n.span(),
                 &key("normal"),
-                "a ball, cylinder or cone wall has no normal (it is placed by its point, and turned by its axis)"
+                "a ball, cylinder, cone or pyramid wall has no normal (it is placed by its point, and turned by its axis)"
                     .into(),
             )),
             (None, true) => {
@@ -282,12 +300,12 @@ fn wall_shape<const D: usize>(
             (Some(n), false) => non_zero(n, "normal")?,
         };
     let axis = match (&w.axis, kind) {
-        (Some(a), Kind::Cylinder | Kind::Cone) => non_zero(a, "axis")?,
-        (None, Kind::Cylinder | Kind::Cone) => {
+        (Some(a), Kind::Cylinder | Kind::Cone | Kind::Pyramid) => non_zero(a, "axis")?,
+        (None, Kind::Cylinder | Kind::Cone | Kind::Pyramid) => {
             return Err(ctx.error(
                 &shape_span,
                 &key("axis"),
-                "is required by a cylinder or cone wall".into(),
+                "is required by a cylinder, cone or pyramid wall".into(),
             ))
         }
         (Some(a), Kind::Ball) if w.spin.is_some() && D == 3 => non_zero(a, "axis")?,
@@ -315,7 +333,7 @@ fn wall_shape<const D: usize>(
             return refuse(
                 a.span(),
                 "axis",
-                "only a cylinder or cone wall, a box in 3D or a spinning ball in 3D has an axis",
+                "only a cylinder, cone or pyramid wall, a box in 3D or a spinning ball in 3D has an axis",
             )
         }
         (None, _) => Vector::<D>::zeros(),
@@ -376,7 +394,7 @@ fn wall_shape<const D: usize>(
         (None, _) => 0.0,
     };
     let half_angle = match (&w.half_angle, kind) {
-        (Some(a), Kind::Cone) => {
+        (Some(a), Kind::Cone | Kind::Pyramid) => {
             let degrees = *a.get_ref();
             if !(degrees > 0.0 && degrees < 90.0) {
                 return refuse(
@@ -394,21 +412,72 @@ fn wall_shape<const D: usize>(
                 "is required by a cone wall: the angle between its axis and its flanks, in degrees (60 for a Rockwell cone)",
             )
         }
+        (None, Kind::Pyramid) => {
+            return refuse(
+                shape_span,
+                "half_angle",
+                "is required by a pyramid wall: the angle between its axis and each face's centre line, in degrees (68 for a Vickers pyramid, 65.27 for a Berkovich)",
+            )
+        }
         (Some(a), _) => {
-            return refuse(a.span(), "half_angle", "only a cone wall has a half-angle")
+            return refuse(
+                a.span(),
+                "half_angle",
+                "only a cone or pyramid wall has a half-angle",
+            )
         }
         (None, _) => 0.0,
     };
     let tip_radius =
         match (&w.tip_radius, kind) {
-            (Some(r), Kind::Cone) => ctx.non_negative(r, &key("tip_radius"))?,
+            (Some(r), Kind::Cone | Kind::Pyramid) => ctx.non_negative(r, &key("tip_radius"))?,
             (Some(r), _) => return refuse(
                 r.span(),
                 "tip_radius",
-                "only a cone wall has a tip radius (a box's edges are rounded by `edge_radius`)",
+                "only a cone or pyramid wall has a tip radius (a box's edges are rounded by `edge_radius`)",
             ),
             (None, _) => 0.0,
         };
+    let sides = match (&w.sides, kind) {
+        (Some(n), Kind::Pyramid) => {
+            let count = *n.get_ref();
+            if !(3..=MAX_PYRAMID_SIDES).contains(&count) {
+                return refuse(
+                    n.span(),
+                    "sides",
+                    &format!("must be a whole number of faces from 3 to {MAX_PYRAMID_SIDES}, got {count} (a pyramid of many more faces is nearly a cone: shape = \"cone\")"),
+                );
+            }
+            count as usize
+        }
+        (None, Kind::Pyramid) => {
+            return refuse(
+                shape_span,
+                "sides",
+                "is required by a pyramid wall: its number of faces (4 for a Vickers pyramid, 3 for a Berkovich)",
+            )
+        }
+        (Some(n), _) => return refuse(n.span(), "sides", "only a pyramid wall has sides"),
+        (None, _) => 0,
+    };
+    let face_direction = match (&w.face_direction, kind) {
+        (Some(f), Kind::Pyramid) => non_zero(f, "face_direction")?,
+        (None, Kind::Pyramid) => {
+            return refuse(
+                shape_span,
+                "face_direction",
+                "is required by a pyramid wall: the direction, at right angles to its axis, from the axis towards the middle of its first face",
+            )
+        }
+        (Some(f), _) => {
+            return refuse(
+                f.span(),
+                "face_direction",
+                "only a pyramid wall has a face direction",
+            )
+        }
+        (None, _) => Vector::<D>::zeros(),
+    };
     let shape = match kind {
         Kind::Plane => WallShape::Plane,
         Kind::Disc => WallShape::Disc { radius },
@@ -429,7 +498,18 @@ fn wall_shape<const D: usize>(
             half_angle,
             tip_radius,
         },
+        Kind::Pyramid => WallShape::Pyramid {
+            axis,
+            face_direction,
+            sides,
+            half_angle,
+            tip_radius,
+        },
     };
+    if let Some(Err(why)) = shape.rigid_pyramid(Vector::<D>::zeros(), (&[], &[], &[])) {
+        let span = w.face_direction.as_ref().map_or(shape_span, |f| f.span());
+        return Err(ctx.error(&span, &key("face_direction"), why));
+    }
     if let Some(Err(why)) = shape.box_frame(normal) {
         let span = w.axis.as_ref().map_or(shape_span, |a| a.span());
         return Err(ctx.error(&span, &key("axis"), why));
@@ -490,8 +570,8 @@ fn wall_spin<const D: usize>(
     Ok(axis * omega)
 }
 
-/// No particle may start inside a ball, a cylinder, a box or a cone, nor behind a plane or a
-/// disc's face.
+/// No particle may start inside a ball, a cylinder, a box, a cone or a pyramid, nor behind a
+/// plane or a disc's face.
 fn check_start<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
@@ -574,6 +654,23 @@ fn check_start<const D: usize>(
                 None => Ok(()),
             };
         }
+        WallShape::Pyramid { .. } => {
+            // Checked when the shape was read.
+            let Some(Ok(pyramid)) = shape.rigid_pyramid(point, (&[], &[], &[])) else {
+                return Ok(());
+            };
+            return match first_inside(bodies, |x| pyramid.distance(x).0) {
+                Some((body, x, depth)) => Err(ctx.error(
+                    &w.point.span(),
+                    &key("point"),
+                    format!(
+                        "body `{body}` starts inside the pyramid: its particle at [{}] is {depth:.3e} inside its surface (`point` is the pyramid's tip, `axis` points from the tip into it)",
+                        point_text(&x),
+                    ),
+                )),
+                None => Ok(()),
+            };
+        }
         WallShape::Plane => None,
         WallShape::Disc { radius } => Some(radius),
     };
@@ -646,7 +743,23 @@ fn check_symmetry<const D: usize>(
     } = *shape
     {
         let cone = (axis / axis.norm(), half_angle, tip_radius);
-        return check_cone_symmetry(ctx, w, cone, point, sliding, symmetry_planes, key);
+        let tip = TipShape::Cone;
+        return check_tip_symmetry(ctx, w, tip, cone, point, sliding, symmetry_planes, key);
+    }
+    if let WallShape::Pyramid {
+        axis, tip_radius, ..
+    } = *shape
+    {
+        // Checked when the shape was read.
+        let Some(Ok(pyramid)) = shape.rigid_pyramid(point, (&[], &[], &[])) else {
+            return Ok(());
+        };
+        let tip = TipShape::Pyramid {
+            face_normals: pyramid.face_normals().to_vec(),
+            edges: pyramid.edges().to_vec(),
+        };
+        let held = (axis / axis.norm(), 0.0, tip_radius);
+        return check_tip_symmetry(ctx, w, tip, held, point, sliding, symmetry_planes, key);
     }
     // Only a finite shape (which has a radius or a size) can cross a plane.
     let (finite_span, finite_field) = match (&w.radius, &w.size) {
@@ -662,7 +775,7 @@ fn check_symmetry<const D: usize>(
         let off_centre =
             |r: f64| (point[a] - position).abs() < r && (point[a] != position || sliding(a));
         let (what, problem) = match *shape {
-            WallShape::Plane | WallShape::Cone { .. } => continue,
+            WallShape::Plane | WallShape::Cone { .. } | WallShape::Pyramid { .. } => continue,
             WallShape::Disc { radius } => ("disc", unit[a] == 0.0 && off_centre(radius)),
             WallShape::Ball { radius } => ("ball", off_centre(radius)),
             WallShape::Cylinder {
@@ -742,22 +855,78 @@ fn check_symmetry<const D: usize>(
     Ok(())
 }
 
-/// A cone is unbounded towards its base, so it crosses every symmetry plane that its axis does
-/// not point away from steeply enough. It is its own mirror image when its axis lies along
-/// the plane, its tip on it, and it does not move across it; otherwise it must stay clear of
-/// the plane: its axis at an angle θ to the plane's normal with θ + α ≤ 90° (its flanks
-/// never turn back towards the plane), pointing away from the plane, and its rounded tip, the
-/// sphere of radius ρ about tip + ρ â, not reaching it.
+/// A pointed wall unbounded towards its base, as [`check_tip_symmetry`] sees it.
+enum TipShape<const D: usize> {
+    Cone,
+    /// A pyramid's faces' outward unit normals and its edges' directions from the apex.
+    Pyramid {
+        face_normals: Vec<Vector<D>>,
+        edges: Vec<Vector<D>>,
+    },
+}
+
+impl<const D: usize> TipShape<D> {
+    fn name(&self) -> &'static str {
+        match self {
+            TipShape::Cone => "cone",
+            TipShape::Pyramid { .. } => "pyramid",
+        }
+    }
+
+    /// Whether the mirror of unit normal `m` through the axis maps the shape onto itself:
+    /// always for a cone; for a pyramid when it maps the set of its faces' normals onto itself
+    /// (each reflected normal n̂ − 2(n̂·m)m within 1e-9 of one of them), that is when the
+    /// mirror passes through the middle of a face or an edge.
+    fn mirrored_by(&self, m: &Vector<D>) -> bool {
+        match self {
+            TipShape::Cone => true,
+            TipShape::Pyramid { face_normals, .. } => face_normals.iter().all(|n| {
+                let image = n - m * (2.0 * n.dot(m));
+                face_normals.iter().any(|k| (image - k).norm() <= 1e-9)
+            }),
+        }
+    }
+
+    /// Whether the shape, with its unit axis at the angle θ to the unit normal `m` of a plane
+    /// and its half-angle α (a cone's), leans back towards the plane: a cone when θ + α > 90°,
+    /// a pyramid when one of its edges points towards the plane. `away` (±1) is the side of the
+    /// plane the axis points to.
+    fn leans_towards(
+        &self,
+        m: &Vector<D>,
+        away: f64,
+        (axis, half_angle): (Vector<D>, f64),
+    ) -> bool {
+        match self {
+            TipShape::Cone => {
+                let theta = axis.dot(m).abs().min(1.0).acos();
+                theta + half_angle > std::f64::consts::FRAC_PI_2
+            }
+            TipShape::Pyramid { edges, .. } => edges.iter().any(|e| away * e.dot(m) < 0.0),
+        }
+    }
+}
+
+/// A cone or a pyramid is unbounded towards its base, so it crosses every symmetry plane that
+/// its axis does not point away from steeply enough. It is its own mirror image when its axis
+/// lies along the plane, its tip on it, it does not move across it, and (a pyramid) the plane
+/// passes through the middle of a face or an edge; otherwise it must stay clear of the plane:
+/// pointing away from it without leaning back towards it (a cone's axis at an angle θ to the
+/// plane's normal with θ + α ≤ 90°; every edge of a pyramid pointing away), and its rounded
+/// tip, the sphere of radius ρ about tip + ρ â, not reaching it. `half_angle` is a cone's α
+/// (not read for a pyramid).
 #[allow(clippy::too_many_arguments)]
-fn check_cone_symmetry<const D: usize>(
+fn check_tip_symmetry<const D: usize>(
     ctx: &Context<'_>,
     w: &WallTable,
+    tip: TipShape<D>,
     (axis, half_angle, tip_radius): (Vector<D>, f64, f64),
     point: Vector<D>,
     sliding: impl Fn(usize) -> bool,
     symmetry_planes: &[SymmetryPlaneTable],
     key: &dyn Fn(&str) -> String,
 ) -> Result<(), SceneError> {
+    let what = tip.name();
     let span = w.axis.as_ref().map_or(w.point.span(), |a| a.span());
     for plane in symmetry_planes {
         let Some(a) = axis_index(plane.axis.get_ref()).filter(|&a| a < D) else {
@@ -765,23 +934,37 @@ fn check_cone_symmetry<const D: usize>(
         };
         let position = *plane.position.get_ref();
         let where_ = format!("the symmetry plane {} = {position}", plane.axis.get_ref());
-        let problem = if axis[a] == 0.0 {
-            if point[a] == position && !sliding(a) {
+        let (problem, field) = if axis[a] == 0.0 {
+            let mut normal = Vector::<D>::zeros();
+            normal[a] = 1.0;
+            if point[a] != position || sliding(a) {
+                (format!("the {what}'s axis lies along {where_} but its tip is off the plane or it moves across it, so the model's mirrored half would meet another {what}; put its tip on the plane and move it along the plane only"), "axis")
+            } else if !tip.mirrored_by(&normal) {
+                (format!("the pyramid's axis lies along {where_} but the plane passes through neither the middle of a face nor an edge, so its mirror image is another pyramid; turn `face_direction` so that it does (e.g. along the plane or along its normal for 4 sides, along the plane for 3)"), "face_direction")
+            } else {
                 continue;
             }
-            format!("the cone's axis lies along {where_} but its tip is off the plane or it moves across it, so the model's mirrored half would meet another cone; put its tip on the plane and move it along the plane only")
         } else {
             let away = axis[a].signum();
-            let theta = axis[a].abs().min(1.0).acos();
+            let mut normal = Vector::<D>::zeros();
+            normal[a] = 1.0;
             let tip_centre = point[a] + axis[a] * tip_radius;
-            if theta + half_angle <= std::f64::consts::FRAC_PI_2
+            if !tip.leans_towards(&normal, away, (axis, half_angle))
                 && away * (tip_centre - position) >= tip_radius
             {
                 continue;
             }
-            format!("the cone reaches across {where_} (it is unbounded towards its base), so its mirror image is another cone; lay its axis along the plane with its tip on it, or point it away from the plane steeply enough (its axis within 90° − half_angle of the plane's normal) with its tip clear of the plane")
+            let steeply = match tip {
+                TipShape::Cone => "its axis within 90° − half_angle of the plane's normal",
+                TipShape::Pyramid { .. } => "every edge pointing away from the plane",
+            };
+            (format!("the {what} reaches across {where_} (it is unbounded towards its base), so its mirror image is another {what}; lay its axis along the plane with its tip on it, or point it away from the plane steeply enough ({steeply}) with its tip clear of the plane"), "axis")
         };
-        return Err(ctx.error(&span, &key("axis"), problem));
+        let span = match (field, &w.face_direction) {
+            ("face_direction", Some(f)) => f.span(),
+            _ => span.clone(),
+        };
+        return Err(ctx.error(&span, &key(field), problem));
     }
     Ok(())
 }

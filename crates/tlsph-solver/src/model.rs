@@ -685,7 +685,7 @@ pub struct WallDescription<const D: usize> {
     /// Translation of the plane; `None`: the wall is fixed.
     pub motion: Option<WallMotion<D>>,
     /// The wall's shape: the unbounded plane, or (2D and 3D) a finite disc, a ball, a box or
-    /// a cone (a wedge in 2D), or (3D) a cylinder.
+    /// a cone (a wedge in 2D), or (3D) a cylinder or a pyramid.
     pub shape: WallShape<D>,
     /// Report the moment M = Σ (x_I − p(t)) × F_I of the wall's force on the particles (and of
     /// its friction force, separately) about the wall's current `point` p(t) (opt-in: without
@@ -749,6 +749,22 @@ pub enum WallShape<const D: usize> {
         half_angle: f64,
         /// Radius ρ ≥ 0 of the sphere (circle in 2D) tangent to the flanks that rounds the tip
         /// (0: sharp) \[m\].
+        tip_radius: f64,
+    },
+    /// (3D) The regular pyramid with its tip at `point`, opening along `axis`, unbounded
+    /// towards its base, with its tip sharp or rounded: a Vickers or Berkovich indenter
+    /// (`tlsph_contact::RigidPyramid`). `normal` is not used.
+    Pyramid {
+        /// Direction from the tip into the pyramid (need not be unit).
+        axis: Vector<D>,
+        /// Direction from the axis towards the middle of the first face, at right angles to
+        /// the axis (need not be unit).
+        face_direction: Vector<D>,
+        /// Number N ≥ 3 of faces (4 Vickers, 3 Berkovich).
+        sides: usize,
+        /// Half-angle α between the axis and each face's centre line, 0 < α < π/2 \[rad\].
+        half_angle: f64,
+        /// Radius ρ ≥ 0 of the sphere that rounds the tip (0: sharp) \[m\].
         tip_radius: f64,
     },
 }
@@ -840,6 +856,36 @@ impl<const D: usize> WallShape<D> {
         Some(Err(why))
     }
 
+    /// The pyramid of this shape with its tip at `point`, for particles with smoothing
+    /// lengths, sound speeds and spacings `particles` (empty slices: its geometry alone, its
+    /// `distance` but not its contact), or why there is none
+    /// (`tlsph_contact::RigidPyramid::new`); `None` for any other shape.
+    pub fn rigid_pyramid(
+        &self,
+        point: Vector<D>,
+        particles: (&[f64], &[f64], &[f64]),
+    ) -> Option<Result<tlsph_contact::RigidPyramid<D>, String>> {
+        let WallShape::Pyramid {
+            axis,
+            face_direction,
+            sides,
+            half_angle,
+            tip_radius,
+        } = *self
+        else {
+            return None;
+        };
+        Some(tlsph_contact::RigidPyramid::new(
+            point,
+            axis,
+            face_direction,
+            sides,
+            half_angle,
+            tip_radius,
+            particles,
+        ))
+    }
+
     /// The axis a wall of this shape, with `normal`, may spin about (`WallMotion::spin`): its
     /// own axis of symmetry, so the spin moves its surface and not its shape. `Ok(Some(ê))`: a
     /// plane's or a disc's normal, a cylinder's or a cone's axis (3D), z for a ball in 2D;
@@ -855,6 +901,7 @@ impl<const D: usize> WallShape<D> {
             (3, WallShape::Ball { .. }) => Ok(None),
             (2, WallShape::Ball { .. }) => Ok(Some(Vector3::z())),
             (_, WallShape::Box { .. }) => Err("a box cannot spin: it has no axis about which turning leaves its shape where it is".into()),
+            (_, WallShape::Pyramid { .. }) => Err("a pyramid cannot spin: turning about its axis moves its faces".into()),
             (2, _) => Err("in 2D only a ball may spin (about z): a plane, a disc or a wedge turning in the plane would move its shape".into()),
             _ => Err(format!("a {D}D wall cannot spin")),
         }

@@ -28,7 +28,7 @@ use rayon::prelude::*;
 use std::ops::Range;
 use tlsph_contact::{
     FiniteCylinder, FlatDisc, FrictionCoefficients, PenaltyLaw, PotentialLaw, RigidBall, RigidBox,
-    RigidCone, RigidCylinder, RigidPlane, WallGeometry,
+    RigidCone, RigidCylinder, RigidPlane, RigidPyramid, WallGeometry,
 };
 use tlsph_kernels::Kernel;
 use tlsph_math::{vector_to_3d, von_mises, Vector, Vector3};
@@ -2076,14 +2076,16 @@ fn build_effects<const D: usize>(
         )?)));
     }
     for wall in &model.effects.walls {
-        // A ball, a cylinder or a cone has no normal; a cylinder's or a cone's axis is checked
-        // like a normal.
+        // A ball, a cylinder, a cone or a pyramid has no normal; their axis is checked like
+        // a normal.
         let direction = match wall.shape {
             WallShape::Plane | WallShape::Disc { .. } | WallShape::Box { .. } => {
                 Some(("normal", wall.normal))
             }
             WallShape::Ball { .. } => None,
-            WallShape::Cylinder { axis, .. } | WallShape::Cone { axis, .. } => Some(("axis", axis)),
+            WallShape::Cylinder { axis, .. }
+            | WallShape::Cone { axis, .. }
+            | WallShape::Pyramid { axis, .. } => Some(("axis", axis)),
         };
         let direction_ok =
             direction.is_none_or(|(_, n)| n.norm() > 0.0 && n.iter().all(|x| x.is_finite()));
@@ -2226,6 +2228,19 @@ fn build_effects<const D: usize>(
                     &mut effects,
                     travel,
                     RigidWall::new(name, cone, motion),
+                    (coefficients, point, report_moment),
+                );
+            }
+            WallShape::Pyramid { .. } => {
+                let pyramid: RigidPyramid<D> = wall
+                    .shape
+                    .rigid_pyramid(point, (&h, &c0, &dx))
+                    .unwrap_or_else(|| Err("is not a pyramid".into()))
+                    .map_err(wall_error)?;
+                push_wall(
+                    &mut effects,
+                    travel,
+                    RigidWall::new(name, pyramid, motion),
                     (coefficients, point, report_moment),
                 );
             }
