@@ -941,7 +941,7 @@ fn a_cone_wall_is_read_placed_and_checked() {
     refused(
         &no_axis,
         "axis",
-        "is required by a cylinder or cone",
+        "is required by a cylinder, cone or pyramid",
         "shape = \"cone\"",
     );
     let roller_angle = HALF_BEND.replace("radius = 3.0e-3", "radius = 3.0e-3\nhalf_angle = 60.0");
@@ -1007,6 +1007,161 @@ fn a_cone_wall_is_read_placed_and_checked() {
             &aside(x, axis, half_angle),
             "axis",
             "the cone reaches across the symmetry plane x = 0",
+            &format!("axis = {axis}"),
+        );
+    }
+}
+
+#[test]
+fn a_pyramid_wall_is_read_placed_and_checked() {
+    // A Vickers pyramid (4 faces at 68° to its axis) over the half beam, its tip on the beam's
+    // top face (z = 4 mm) and on the symmetry plane x = 0, its axis pointing up into it, its
+    // first face towards +x.
+    let pyramid_lines = "shape = \"pyramid\"\npoint = [0.0, 2.0e-3, 4.0e-3]\naxis = [0.0, 0.0, 1.0]\nsides = 4\nhalf_angle = 68.0\nface_direction = [1.0, 0.0, 0.0]\n";
+    let vickers = HALF_BEND.replace(
+        "shape = \"cylinder\"\npoint = [0.0, 2.0e-3, 7.0e-3]\naxis = [0.0, 1.0, 0.0]\nradius = 3.0e-3\n",
+        pyramid_lines,
+    );
+    assert!(vickers.contains(pyramid_lines));
+    let scene = parse_scene(&vickers, "vickers.toml").unwrap();
+    let tlsph_io::DimensionModel::Three(model) = &scene.model else {
+        panic!("3D")
+    };
+    assert_eq!(
+        model.effects.walls[0].shape,
+        WallShape::Pyramid {
+            axis: tlsph_math::Vector::<3>::z(),
+            face_direction: tlsph_math::Vector::<3>::x(),
+            sides: 4,
+            half_angle: 68f64.to_radians(),
+            tip_radius: 0.0,
+        }
+    );
+    // Like a box or a cone, in a total-Lagrangian scene without hourglass control it gets a
+    // note (`tlsph check`).
+    let notes = scene.overview().notes;
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.starts_with("wall `roller` is a pyramid")
+                && n.contains("[hourglass_control]")),
+        "{notes:?}"
+    );
+    let refused = |text: &str, field: &str, needle: &str, line: &str| {
+        let e = error_of(text);
+        assert_eq!(e.field, format!("wall[roller].{field}"), "{e}");
+        assert!(e.message.contains(needle), "{e}");
+        assert_eq!(e.line, Some(line_of(text, line)), "{e}");
+    };
+    // Sunk 1 mm: the top layer's particles nearest the axis (0.5 mm from it along x and y,
+    // 0.5 mm above the tip) are inside all four faces.
+    let sunk = vickers.replace(
+        "point = [0.0, 2.0e-3, 4.0e-3]",
+        "point = [0.0, 2.0e-3, 3.0e-3]",
+    );
+    refused(
+        &sunk,
+        "point",
+        "starts inside the pyramid",
+        "point = [0.0, 2.0e-3, 3.0e-3]",
+    );
+    // Its keys: `sides` (3 to 100) and `face_direction` (at right angles to the axis) are
+    // required; neither is taken by another shape; a pyramid cannot spin and needs 3D.
+    let sides = "sides = 4";
+    refused(
+        &vickers.replace(&format!("{sides}\n"), ""),
+        "sides",
+        "is required by a pyramid",
+        "shape = \"pyramid\"",
+    );
+    for bad in ["2", "101", "-4"] {
+        let text = vickers.replace(sides, &format!("sides = {bad}"));
+        refused(&text, "sides", "from 3 to 100", &format!("sides = {bad}"));
+    }
+    let face = "face_direction = [1.0, 0.0, 0.0]";
+    refused(
+        &vickers.replace(&format!("{face}\n"), ""),
+        "face_direction",
+        "is required by a pyramid",
+        "shape = \"pyramid\"",
+    );
+    let slanted = vickers.replace(face, "face_direction = [1.0, 0.0, 0.1]");
+    refused(
+        &slanted,
+        "face_direction",
+        "at right angles to its axis",
+        "face_direction = [1.0, 0.0, 0.1]",
+    );
+    refused(
+        &vickers.replace("half_angle = 68.0\n", ""),
+        "half_angle",
+        "is required by a pyramid",
+        "shape = \"pyramid\"",
+    );
+    let roller =
+        |extra: &str| HALF_BEND.replace("radius = 3.0e-3", &format!("radius = 3.0e-3\n{extra}"));
+    refused(&roller("sides = 4"), "sides", "only a pyramid", "sides = 4");
+    refused(&roller(face), "face_direction", "only a pyramid", face);
+    let spinning = vickers.replace(sides, "sides = 4\nfriction = 0.3\nspin = 5.0");
+    refused(&spinning, "spin", "a pyramid cannot spin", "spin = 5.0");
+    let flat = TWO_BLOCKS.replace("GAP", "10.0e-3").replace(
+        "point = [0.0, 0.0]\nnormal = [0.0, 1.0]",
+        "shape = \"pyramid\"\npoint = [5.0e-3, -1.0e-3]\naxis = [0.0, -1.0]\nhalf_angle = 45.0",
+    );
+    let e = error_of(&flat);
+    assert_eq!(e.field, "wall[floor].shape", "{e}");
+    assert!(e.message.contains("needs a 3D scene"), "{e}");
+    // Across the symmetry plane x = 0: its own mirror image when the plane passes through the
+    // middle of a face (first face towards x) or through an edge (turned 45°), not turned
+    // 10°. A Berkovich pyramid (3 faces at 65.27°) is mirrored by a plane through one face's
+    // middle and the opposite edge: its first face towards y, not towards x.
+    parse_scene(
+        &vickers.replace(face, "face_direction = [1.0, 1.0, 0.0]"),
+        "edges.toml",
+    )
+    .unwrap();
+    let turned = vickers.replace(face, "face_direction = [0.985, 0.174, 0.0]");
+    refused(
+        &turned,
+        "face_direction",
+        "passes through neither the middle of a face nor an edge",
+        "face_direction = [0.985, 0.174, 0.0]",
+    );
+    let berkovich = |direction: &str| {
+        vickers
+            .replace(sides, "sides = 3")
+            .replace("half_angle = 68.0", "half_angle = 65.27")
+            .replace(face, &format!("face_direction = {direction}"))
+    };
+    parse_scene(&berkovich("[0.0, 1.0, 0.0]"), "berkovich.toml").unwrap();
+    refused(
+        &berkovich("[1.0, 0.0, 0.0]"),
+        "face_direction",
+        "passes through neither",
+        "face_direction = [1.0, 0.0, 0.0]",
+    );
+    // Off the plane it must not lean back towards it: every edge pointing away, and the tip's
+    // sphere clear. High above the beam, its axis along +x, its tip rounded to 1 mm, it is
+    // clear with the tip 0.5 mm past the plane (the sphere's centre 1.5 mm), not 0.5 mm
+    // before it; tipped 45° up with faces at 40° its edges still point away (the cone through
+    // its edges, of half-angle atan(tan 40° / cos 45°) = 49.9°, would not), with faces at 50°
+    // one leans back.
+    let aside = |x: &str, axis: &str, half_angle: &str| {
+        vickers.replace(
+            pyramid_lines,
+            &format!("shape = \"pyramid\"\npoint = [{x}, 2.0e-3, 20.0e-3]\naxis = {axis}\nsides = 4\nface_direction = [0.0, 1.0, 0.0]\nhalf_angle = {half_angle}\ntip_radius = 1.0e-3\n"),
+        )
+    };
+    parse_scene(&aside("0.5e-3", "[1.0, 0.0, 0.0]", "30.0"), "aside.toml").unwrap();
+    parse_scene(&aside("0.5e-3", "[1.0, 0.0, 1.0]", "40.0"), "tipped.toml").unwrap();
+    for (x, axis, half_angle) in [
+        ("-0.5e-3", "[1.0, 0.0, 0.0]", "30.0"),
+        ("0.5e-3", "[1.0, 0.0, 1.0]", "50.0"),
+    ] {
+        refused(
+            &aside(x, axis, half_angle),
+            "axis",
+            "the pyramid reaches across the symmetry plane x = 0",
             &format!("axis = {axis}"),
         );
     }
