@@ -1,6 +1,6 @@
 //! The `[[wall]]` tables: a rigid plane, disc, ball, cylinder, box, cone or pyramid with its
-//! friction and motion, checked against the bodies' starting positions and the symmetry planes (numerics.md §13
-//! `[C]`; the finite shapes are ours).
+//! friction and motion, checked against the bodies' starting positions and the symmetry planes
+//! (numerics.md §13 `[C]`; the finite shapes are ours).
 
 use crate::scene::{axis_index, history_key, parse_amplitude, point_text, Context, SceneError};
 use crate::scene_file::{SymmetryPlaneTable, WallTable};

@@ -1,6 +1,6 @@
 //! The rigid walls' penalty springs (the unbounded plane, the finite disc, the ball, the
-//! cylinder, the finite cylinder, the box, the cone, the pyramid), the surface point and spin velocity their
-//! friction reads, and their Coulomb friction (numerics.md §13).
+//! cylinder, the finite cylinder, the box, the cone, the pyramid), the surface point and spin
+//! velocity their friction reads, and their Coulomb friction (numerics.md §13).
 
 use approx::assert_relative_eq;
 use tlsph_contact::{
