@@ -2144,35 +2144,25 @@ fn build_effects<const D: usize>(
             .filter(|b| !b.range.is_empty())
             .map(|b| (model.config.cfl * b.smoothing_length, b.range.start))
             .fold((f64::INFINITY, usize::MAX), min_by_value_then_index);
+        let friction = (coefficients, point, report_moment);
+        let particles = (&h[..], &c0[..], &dx[..]);
         match wall.shape {
             WallShape::Plane => {
                 let plane = RigidPlane::new(point, normal, &h, &c0, &dx);
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, plane, motion),
-                    (coefficients, point, report_moment),
-                );
+                let wall = RigidWall::new(name, plane, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
             WallShape::Disc { radius } => {
                 let radius = checked_radius(radius)?;
                 let disc = FlatDisc::new(point, normal, radius, &h, &c0, &dx);
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, disc, motion),
-                    (coefficients, point, report_moment),
-                );
+                let wall = RigidWall::new(name, disc, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
             WallShape::Ball { radius } => {
                 let radius = checked_radius(radius)?;
                 let ball = RigidBall::new(point, radius, &h, &c0, &dx);
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, ball, motion),
-                    (coefficients, point, report_moment),
-                );
+                let wall = RigidWall::new(name, ball, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
             WallShape::Cylinder {
                 radius,
@@ -2185,7 +2175,6 @@ fn build_effects<const D: usize>(
                         "a cylinder needs a 3D scene (in 2D a ball is the cylinder in plane strain), got {D}D"
                     )));
                 }
-                let friction = (coefficients, point, report_moment);
                 match length {
                     None => {
                         let cylinder = RigidCylinder::new(point, axis, radius, &h, &c0, &dx);
@@ -2206,43 +2195,25 @@ fn build_effects<const D: usize>(
                 }
             }
             WallShape::Box { .. } => {
-                let block: RigidBox<D> = wall
-                    .shape
-                    .rigid_box(point, normal, (&h, &c0, &dx))
-                    .unwrap_or_else(|| Err("is not a box".into()))
-                    .map_err(wall_error)?;
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, block, motion),
-                    (coefficients, point, report_moment),
-                );
+                let block: RigidBox<D> =
+                    built_shape(wall.shape.rigid_box(point, normal, particles), "box")
+                        .map_err(wall_error)?;
+                let wall = RigidWall::new(name, block, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
             WallShape::Cone { .. } => {
-                let cone: RigidCone<D> = wall
-                    .shape
-                    .rigid_cone(point, (&h, &c0, &dx))
-                    .unwrap_or_else(|| Err("is not a cone".into()))
-                    .map_err(wall_error)?;
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, cone, motion),
-                    (coefficients, point, report_moment),
-                );
+                let cone: RigidCone<D> =
+                    built_shape(wall.shape.rigid_cone(point, particles), "cone")
+                        .map_err(wall_error)?;
+                let wall = RigidWall::new(name, cone, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
             WallShape::Pyramid { .. } => {
-                let pyramid: RigidPyramid<D> = wall
-                    .shape
-                    .rigid_pyramid(point, (&h, &c0, &dx))
-                    .unwrap_or_else(|| Err("is not a pyramid".into()))
-                    .map_err(wall_error)?;
-                push_wall(
-                    &mut effects,
-                    travel,
-                    RigidWall::new(name, pyramid, motion),
-                    (coefficients, point, report_moment),
-                );
+                let pyramid: RigidPyramid<D> =
+                    built_shape(wall.shape.rigid_pyramid(point, particles), "pyramid")
+                        .map_err(wall_error)?;
+                let wall = RigidWall::new(name, pyramid, motion);
+                push_wall(&mut effects, travel, wall, friction);
             }
         }
     }
@@ -2540,6 +2511,12 @@ fn check_spin<const D: usize>(
         ));
     }
     Ok(())
+}
+
+/// A wall's shape as `WallShape` builds it after its own checks (`rigid_box`, `rigid_cone`,
+/// `rigid_pyramid`), or why there is none; `what` names the shape for a variant mismatch.
+fn built_shape<G>(shape: Option<Result<G, String>>, what: &str) -> Result<G, String> {
+    shape.unwrap_or_else(|| Err(format!("is not a {what}")))
 }
 
 /// Adds a wall of shape `G`, with its travel limit per step (`length`, a particle with that
