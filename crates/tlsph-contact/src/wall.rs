@@ -680,7 +680,8 @@ wall_by_distance!(RigidCone);
 /// distance to the nearest point of its surface: the foot q − (n̂_j·q) n̂_j on face j where
 /// that foot lies within the face (on the inner side of both neighbouring faces), or else the
 /// nearest point of an edge (or the apex). The push along the unit vector from that point to
-/// x is the gradient of the spring's ½ k δ², δ = Δx/2 − s.
+/// x is the gradient of the spring's ½ k δ², δ = Δx/2 − s (the penalty law of numerics.md §13
+/// `[C]`).
 #[derive(Debug, Clone)]
 pub struct RigidPyramid<const D: usize> {
     /// Apex of the sharp pyramid, tip + ρ â \[m\].

@@ -9,7 +9,7 @@ use tlsph_solver::{
     BodyDescription, RampShape, VelocityRamp, WallDescription, WallMotion, WallShape,
 };
 
-/// Most faces a pyramid wall may have: its contact costs two dot products per face and
+/// Most faces a pyramid wall may have: its contact costs a few dot products per face and
 /// particle, and a pyramid of many more faces is nearly a cone.
 const MAX_PYRAMID_SIDES: i64 = 100;
 
