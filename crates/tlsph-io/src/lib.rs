@@ -20,6 +20,6 @@ pub use run::{
     write_csv, FrameSink, Intervals, ProbeHistory, Progress, RunError, RunRecord,
 };
 pub use scene::{
-    load_scene, load_scene_without_field_tables, parse_scene, DimensionModel, OutputSpec,
-    ProbeSpec, Scene, SceneError,
+    load_scene, load_scene_without_field_tables, parse_scene, DimensionModel, FieldTableSummary,
+    OutputSpec, ProbeSpec, Scene, SceneError,
 };

@@ -1,9 +1,10 @@
 //! What `tlsph check` tells a user about a scene before it runs: per body the particle count,
-//! the wave speed of its material and the time step it allows at the start, the size of the
-//! run that follows from them (steps and particle-steps, the cost measure of the harness), and
-//! notes on effects the scene is likely to need.
+//! the wave speed of its material and the time step it allows at the start, how each field
+//! table met its body's particles, the size of the run that follows from them (steps and
+//! particle-steps, the cost measure of the harness), and notes on effects the scene is likely
+//! to need.
 
-use crate::scene::{DimensionModel, Scene};
+use crate::scene::{DimensionModel, FieldTableSummary, Scene};
 use std::fmt;
 use tlsph_materials::EquationOfState;
 use tlsph_solver::{Formulation, FrictionCoefficients, Model, WallShape};
@@ -46,6 +47,8 @@ pub struct SceneOverview {
     /// Set-up advice, one sentence each (printed as `note:` lines): effects a scene is likely
     /// to need for what it declares.
     pub notes: Vec<String>,
+    /// How each field table read met its body's particles ([`Scene::field_tables`]).
+    pub field_tables: Vec<FieldTableSummary>,
 }
 
 impl SceneOverview {
@@ -73,11 +76,13 @@ impl SceneOverview {
 impl Scene {
     /// The overview `tlsph check` prints (see [`SceneOverview`]).
     pub fn overview(&self) -> SceneOverview {
-        match &self.model {
+        let mut overview = match &self.model {
             DimensionModel::One(m) => overview_of(m),
             DimensionModel::Two(m) => overview_of(m),
             DimensionModel::Three(m) => overview_of(m),
-        }
+        };
+        overview.field_tables = self.field_tables.clone();
+        overview
     }
 }
 
@@ -116,6 +121,7 @@ fn overview_of<const D: usize>(model: &Model<D>) -> SceneOverview {
         bodies,
         end_time: model.config.end_time,
         notes: set_up_notes(model),
+        field_tables: Vec::new(),
     }
 }
 
@@ -255,6 +261,27 @@ impl fmt::Display for SceneOverview {
                 )?;
             }
             writeln!(f)?;
+        }
+        for t in &self.field_tables {
+            let (fewest, most) = t.samples_per_particle;
+            let fit = match t.interpolation {
+                "linear" => format!(
+                    "linear fit to the samples within {:.4e}: {fewest} to {most} samples per \
+                     particle",
+                    t.reach
+                ),
+                _ => format!("nearest sample within {:.4e}", t.reach),
+            };
+            writeln!(
+                f,
+                "  {} `{}`: {} samples, {fit}; the nearest sample at most {:.4e} from a \
+                 particle; {} samples used by no particle",
+                t.field,
+                t.path.display(),
+                t.samples,
+                t.farthest_nearest_sample,
+                t.unused_samples
+            )?;
         }
         write!(
             f,

@@ -107,6 +107,33 @@ pub struct Scene {
     pub probes: Vec<ProbeSpec>,
     /// Output settings.
     pub output: OutputSpec,
+    /// How each field table read met its body's particles, in scene order (empty when no
+    /// table was read, e.g. by [`load_scene_without_field_tables`]).
+    pub field_tables: Vec<FieldTableSummary>,
+}
+
+/// How a field table (`initial_stress_file`, `initial_velocity_file`,
+/// `initial_plastic_strain_file`) met its body's particles, as `tlsph check` reports it: how
+/// many samples each particle's value came from, how far the nearest sample lay, and how many
+/// samples no particle used (a table reaching beyond the body, or misplaced).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldTableSummary {
+    /// The scene key, e.g. `body[plate].initial_stress_file`.
+    pub field: String,
+    /// The table's file.
+    pub path: PathBuf,
+    /// Samples (data rows) read.
+    pub samples: usize,
+    /// `"nearest"` or `"linear"`.
+    pub interpolation: &'static str,
+    /// The `reach` used \[length\].
+    pub reach: f64,
+    /// Fewest and most samples a particle's value came from ((1, 1) for the nearest sample).
+    pub samples_per_particle: (usize, usize),
+    /// Largest distance from a particle to its nearest sample \[length\].
+    pub farthest_nearest_sample: f64,
+    /// Samples that no particle's value came from.
+    pub unused_samples: usize,
 }
 
 impl Scene {
@@ -218,6 +245,7 @@ fn parse_scene_in(
         origin,
         folder,
         read_field_tables,
+        field_tables: Default::default(),
     };
     let file: SceneFile = toml::from_str(text).map_err(|e| {
         let (line, column) = match e.span() {
@@ -256,6 +284,8 @@ pub(crate) struct Context<'a> {
     /// Whether `initial_stress_file` and `initial_velocity_file` tables are read (or the keys
     /// left out, for [`load_scene_without_field_tables`]).
     read_field_tables: bool,
+    /// What each field table read met ([`Scene::field_tables`]).
+    field_tables: std::cell::RefCell<Vec<FieldTableSummary>>,
 }
 
 impl Context<'_> {
@@ -304,6 +334,7 @@ impl Context<'_> {
             model,
             probes,
             output,
+            field_tables: self.field_tables.take(),
         }
     }
 
@@ -1858,6 +1889,25 @@ fn mapped_field_table<const D: usize, const N: usize>(
             format!("`{}`: {message}", path.display()),
         )
     })?;
+    let (samples_per_particle, unused_samples) = mapping.usage(samples.points.len());
+    let farthest_nearest_sample = positions
+        .iter()
+        .enumerate()
+        .map(|(k, x)| (samples.points[mapping.nearest(k)] - x).norm())
+        .fold(0.0, f64::max);
+    ctx.field_tables.borrow_mut().push(FieldTableSummary {
+        field: field.to_string(),
+        path: path.clone(),
+        samples: samples.points.len(),
+        interpolation: match interpolation {
+            Interpolation::Nearest => "nearest",
+            Interpolation::Linear => "linear",
+        },
+        reach,
+        samples_per_particle,
+        farthest_nearest_sample,
+        unused_samples,
+    });
     Ok((samples, mapping, path))
 }
 

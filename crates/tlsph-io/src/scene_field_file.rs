@@ -186,6 +186,19 @@ impl SampleMapping {
     pub fn sample_count(&self, k: usize) -> usize {
         self.offsets[k + 1] - self.offsets[k]
     }
+
+    /// The fewest and most samples any particle's values come from ((0, 0) without
+    /// particles), and how many of the `samples` no particle's values come from.
+    pub fn usage(&self, samples: usize) -> ((usize, usize), usize) {
+        let counts = self.offsets.windows(2).map(|w| w[1] - w[0]);
+        let fewest = counts.clone().min().unwrap_or(0);
+        let most = counts.max().unwrap_or(0);
+        let mut used = vec![false; samples];
+        for (index, _) in &self.terms {
+            used[*index] = true;
+        }
+        ((fewest, most), used.iter().filter(|u| !**u).count())
+    }
 }
 
 /// Maps the samples to each of `positions`. Every particle's nearest sample (the first in file

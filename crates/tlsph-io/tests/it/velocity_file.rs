@@ -175,6 +175,58 @@ fn a_coarse_table_mapped_linearly_gives_the_mode_where_the_nearest_sample_gives_
 }
 
 #[test]
+fn tlsph_check_tells_how_a_table_met_the_particles() {
+    // The rod's particles lie at X = 0.005, 0.015, ..., 0.995; the table has 16 samples every
+    // 0.1 from 0 to 1.5, reaching half a rod past its end. Nearest sample within 0.06: each
+    // particle takes the nearest multiple of 0.1, at most 0.045 away, and the samples at
+    // 1.1–1.5 serve none (5). Linear fit within 0.25: a particle at the rod's end fits the 3
+    // samples 0, 0.1, 0.2; inside, 5; the samples at 1.1 and 1.2 are within 0.25 of the last
+    // particles, so only 1.3–1.5 serve none (3).
+    let samples: Vec<Vector<1>> = (0..=15).map(|k| Vector::<1>::new(0.1 * k as f64)).collect();
+    let table = table_of(&samples, |x| 0.1 * x);
+    let summary = |interpolation: &str, reach: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let key = format!(
+            "initial_velocity_file = {{ path = \"fields/velocity.csv\", reach = {reach}, interpolation = \"{interpolation}\" }}"
+        );
+        let scene = load_with_table(dir.path(), &rod(&key), &table).unwrap();
+        let overview = scene.overview().to_string();
+        assert_eq!(scene.field_tables.len(), 1);
+        (scene.field_tables[0].clone(), overview)
+    };
+    let (nearest, printed) = summary("nearest", "0.06");
+    assert_eq!(nearest.field, "body[rod].initial_velocity_file");
+    assert!(nearest.path.ends_with("fields/velocity.csv"));
+    assert_eq!(
+        (nearest.samples, nearest.interpolation, nearest.reach),
+        (16, "nearest", 0.06)
+    );
+    assert_eq!(nearest.samples_per_particle, (1, 1));
+    assert!((nearest.farthest_nearest_sample - 0.045).abs() < 1e-12);
+    assert_eq!(nearest.unused_samples, 5);
+    assert!(
+        printed.contains("body[rod].initial_velocity_file `")
+            && printed.contains("velocity.csv`: 16 samples, nearest sample within 6.0000e-2; the nearest sample at most 4.5000e-2 from a particle; 5 samples used by no particle"),
+        "{printed}"
+    );
+    let (linear, printed) = summary("linear", "0.25");
+    assert_eq!(linear.samples_per_particle, (3, 5));
+    assert_eq!(linear.unused_samples, 3);
+    assert!(
+        printed.contains(
+            "16 samples, linear fit to the samples within 2.5000e-1: 3 to 5 samples per particle"
+        ),
+        "{printed}"
+    );
+    // Without its tables a scene has nothing to tell.
+    let dir = tempfile::tempdir().unwrap();
+    fs::create_dir_all(dir.path().join("fields")).unwrap();
+    fs::write(dir.path().join("scene.toml"), rod(KEY)).unwrap();
+    let scene = tlsph_io::load_scene_without_field_tables(&dir.path().join("scene.toml")).unwrap();
+    assert!(scene.field_tables.is_empty());
+}
+
+#[test]
 fn linear_interpolation_s_default_reach_takes_in_a_table_at_the_particles() {
     // Twice the spacing: each particle fits its own sample and its neighbours', so a linear
     // field comes back to round-off (the nearest-sample default, one spacing, gives it
