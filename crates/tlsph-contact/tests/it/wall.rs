@@ -788,6 +788,42 @@ fn pyramid_from_corners(
     (normals, corners.iter().map(|c| c.normalize()).collect())
 }
 
+/// A lattice of 9 × 9 × 7 points 0.37 apart round `apex` in `frame` (ê₁, ê₂, â), off its
+/// planes of symmetry: beside the faces and edges, round the tip, inside and far outside.
+fn points_round(
+    apex: Vector<3>,
+    frame: (Vector<3>, Vector<3>, Vector<3>),
+) -> impl Iterator<Item = Vector<3>> {
+    (0..9)
+        .flat_map(|a| (0..9).flat_map(move |b| (0..7).map(move |c| (a, b, c))))
+        .map(move |(a, b, c)| {
+            let q = Vector::<3>::new(a as f64 - 4.0, b as f64 - 4.0, c as f64 - 2.0) * 0.37
+                + Vector::<3>::new(0.011, 0.007, 0.003);
+            apex + frame.0 * q.x + frame.1 * q.y + frame.2 * q.z
+        })
+}
+
+#[test]
+fn a_pyramid_touches_exactly_the_particles_its_distance_says_it_does() {
+    // The contact law skips a particle standing at least Δx/2 + ρ above a face's plane
+    // without computing its distance; everywhere else δ = Δx/2 − s. Over the lattice, sharp
+    // and rounded (ρ = 0.4: the skip must allow for it), the two agree to the bit, and some
+    // points touch while most are skipped.
+    let axis = Vector::<3>::new(0.0, 1.0, 1.0).normalize();
+    let frame = (Vector::<3>::x(), axis.cross(&Vector::<3>::x()), axis);
+    for tip_radius in [0.0, 0.4] {
+        for (pyramid, ..) in pyramids(tip_radius) {
+            let mut touching = 0;
+            for x in points_round(Vector::<3>::new(1.0, 0.0, 0.0), frame) {
+                let delta = pyramid.contact(0, x).0;
+                assert_eq!(delta, (0.5 - pyramid.distance(x).0).max(0.0), "{x:?}");
+                touching += usize::from(delta > 0.0);
+            }
+            assert!(touching > 50, "{touching} touching");
+        }
+    }
+}
+
 #[test]
 fn a_pyramid_pushes_a_particle_out_from_its_nearest_surface_point() {
     // Outside, the push must come from the Euclidean projection p* of the particle's centre x
@@ -814,12 +850,7 @@ fn a_pyramid_pushes_a_particle_out_from_its_nearest_surface_point() {
                 .map(|n| n.dot(&(y - apex)))
                 .fold(f64::NEG_INFINITY, f64::max)
         };
-        for (a, b, c) in
-            (0..9).flat_map(|a| (0..9).flat_map(move |b| (0..7).map(move |c| (a, b, c))))
-        {
-            let q = Vector::<3>::new(a as f64 - 4.0, b as f64 - 4.0, c as f64 - 2.0) * 0.37
-                + Vector::<3>::new(0.011, 0.007, 0.003);
-            let x = apex + frame.0 * q.x + frame.1 * q.y + frame.2 * q.z;
+        for x in points_round(apex, frame) {
             let (s, n) = pyramid.distance(x);
             assert_relative_eq!(n.norm(), 1.0, epsilon = 1e-13);
             let foot = x - n * s;
