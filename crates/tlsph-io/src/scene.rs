@@ -1856,21 +1856,16 @@ fn mapped_field_table<const D: usize, const N: usize>(
     check_given: impl FnOnce(&[bool; N]) -> Result<(), SceneError>,
 ) -> Result<(FieldSamples<D, N>, SampleMapping, PathBuf), SceneError> {
     let t = table.get_ref();
-    let interpolation = match t
-        .interpolation
-        .as_ref()
-        .map(|i| (i.get_ref().as_str(), i.span()))
-    {
-        None | Some(("nearest", _)) => Interpolation::Nearest,
-        Some(("linear", _)) => Interpolation::Linear,
-        Some((other, span)) => {
-            return Err(ctx.error(
-                &span,
-                &format!("{field}.interpolation"),
-                format!("unknown interpolation `{other}`; use `nearest` or `linear`"),
-            ))
-        }
-    };
+    let interpolation = ctx.keyword(
+        t.interpolation.as_ref(),
+        &format!("{field}.interpolation"),
+        "interpolation",
+        Interpolation::Nearest,
+        &[
+            ("nearest", Interpolation::Nearest),
+            ("linear", Interpolation::Linear),
+        ],
+    )?;
     let reach = match (&t.reach, interpolation) {
         (Some(r), _) => ctx.positive(r, &format!("{field}.reach"))?,
         (None, Interpolation::Nearest) => spacing,

@@ -294,7 +294,7 @@ fn velocity_file_errors_name_the_file_line_and_field() {
             "initial_velocity_file = { path = \"fields/velocity.csv\", interpolation = \"cubic\" }",
             &good,
             "interpolation",
-            "unknown interpolation `cubic`; use `nearest` or `linear`",
+            "unknown interpolation `cubic` (expected \"nearest\" or \"linear\")",
         ),
         (
             "",
