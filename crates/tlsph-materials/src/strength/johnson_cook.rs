@@ -28,6 +28,21 @@ pub struct JohnsonCookStrengthParameters {
     pub melt_temperature: f64,
 }
 
+impl JohnsonCookStrengthParameters {
+    /// OFHC copper (Johnson and Cook 1983; M-CU9 in problems.md §1): A = 90 MPa,
+    /// B = 292 MPa, n = 0.31, C = 0.025, m = 1.09, ε̇0 = 1/s, T_room = 300 K, T_melt = 1356 K.
+    pub const OFHC_COPPER: Self = Self {
+        a: 90e6,
+        b: 292e6,
+        n: 0.31,
+        c: 0.025,
+        m: 1.09,
+        reference_strain_rate: 1.0,
+        room_temperature: 300.0,
+        melt_temperature: 1356.0,
+    };
+}
+
 /// Johnson–Cook flow stress (numerics.md §8.5; R 6.16–6.17):
 /// σ_y = (A + B ε̄p^n)(1 + C ln ε̇*)(1 − T*^m), ε̇* = max(ε̇̄/ε̇0, 1) inside the logarithm,
 /// T* = (T − T_room)/(T_melt − T_room) clipped to \[0, 1\].
@@ -251,17 +266,7 @@ mod tests {
     use super::*;
 
     fn copper() -> JohnsonCookStrengthParameters {
-        // M-CU9 (problems.md §1).
-        JohnsonCookStrengthParameters {
-            a: 90e6,
-            b: 292e6,
-            n: 0.31,
-            c: 0.025,
-            m: 1.09,
-            reference_strain_rate: 1.0,
-            room_temperature: 300.0,
-            melt_temperature: 1356.0,
-        }
+        JohnsonCookStrengthParameters::OFHC_COPPER
     }
 
     #[test]

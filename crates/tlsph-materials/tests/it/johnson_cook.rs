@@ -23,16 +23,7 @@ fn al7010() -> JohnsonCookStrengthParameters {
 
 /// M-CU9 (problems.md §1).
 fn cu9() -> JohnsonCookStrengthParameters {
-    JohnsonCookStrengthParameters {
-        a: 90e6,
-        b: 292e6,
-        n: 0.31,
-        c: 0.025,
-        m: 1.09,
-        reference_strain_rate: 1.0,
-        room_temperature: 300.0,
-        melt_temperature: 1356.0,
-    }
+    JohnsonCookStrengthParameters::OFHC_COPPER
 }
 
 /// G of M-AL7010 (deck 0.2632 Mbar).

@@ -419,23 +419,14 @@ fn the_quasi_static_yield_stress_is_the_flow_stress_at_the_reference_rate_and_ro
     use tlsph_materials::strength::{JohnsonCookStrength, JohnsonCookStrengthParameters};
     use tlsph_solver::StrengthModel;
     // OFHC copper (Johnson and Cook 1983): A = 90 MPa, B = 292 MPa, n = 0.31.
-    let parameters = JohnsonCookStrengthParameters {
-        a: 90e6,
-        b: 292e6,
-        n: 0.31,
-        c: 0.025,
-        m: 1.09,
-        reference_strain_rate: 1.0,
-        room_temperature: 293.0,
-        melt_temperature: 1356.0,
-    };
+    let parameters = JohnsonCookStrengthParameters::OFHC_COPPER;
     let model = JohnsonCookStrength::new(parameters).unwrap();
     let strength = StrengthModel::JohnsonCook {
         model,
         iterate: false,
     };
     for plastic_strain in [0.0, 0.05, 0.3, 1.0] {
-        let expected = model.yield_stress(plastic_strain, 1.0, 293.0);
+        let expected = model.yield_stress(plastic_strain, 1.0, parameters.room_temperature);
         let got = strength.quasi_static_yield_stress(plastic_strain);
         assert!(
             (got / expected - 1.0).abs() < 1e-15,
