@@ -60,6 +60,19 @@ impl PeerlingsSoftening {
         }
     }
 
+    /// The history κ at which the law reaches damage `damage` = D ∈ \[0, 1\], the inverse of
+    /// F 5.4 on κ0 ≤ κ ≤ κc: D(κc − κ0)κ = κc(κ − κ0) gives κ = κc κ0 / (κc − D(κc − κ0)).
+    /// D = 0 gives κ0 (the threshold), D = 1 gives κc. A particle started with damage D and
+    /// this κ reloads on the secant σ = (1 − D)Eε up to ε = κ, then softens like the virgin
+    /// material. `None` for a D outside \[0, 1\] or not finite.
+    pub fn history_for_damage(&self, damage: f64) -> Option<f64> {
+        if !(0.0..=1.0).contains(&damage) {
+            return None;
+        }
+        let (k0, kc) = (self.kappa0, self.kappa_c);
+        Some(kc * k0 / (kc - damage * (kc - k0)))
+    }
+
     /// Damaged stress: positive principal stresses × (1 − D), compressive ones unchanged
     /// (numerics.md §9.1 `[C]`; F 5.3 "(1 − D)E in tension, E in compression").
     #[inline]
@@ -71,6 +84,26 @@ impl PeerlingsSoftening {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn history_for_damage_inverts_the_law() {
+        // F-A13's law: D(κ(D)) = D across [0, 1] to rounding, the ends at κ0 and κc, and
+        // values outside [0, 1] refused.
+        let law = PeerlingsSoftening::new(0.001, 0.01).unwrap();
+        assert_eq!(law.history_for_damage(0.0), Some(0.001));
+        assert!((law.history_for_damage(1.0).unwrap() - 0.01).abs() < 1e-15);
+        for i in 0..=100 {
+            let d = i as f64 / 100.0;
+            let kappa = law.history_for_damage(d).unwrap();
+            assert!(
+                (law.damage(kappa) - d).abs() < 1e-14,
+                "D = {d}: κ = {kappa}"
+            );
+        }
+        for bad in [-1e-9, 1.0 + 1e-9, f64::NAN, f64::INFINITY] {
+            assert_eq!(law.history_for_damage(bad), None);
+        }
+    }
 
     #[test]
     fn bad_parameters_name_their_field() {
