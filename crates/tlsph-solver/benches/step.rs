@@ -98,6 +98,7 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
             initial_stress_gradient: None,
             initial_stresses: None,
             initial_plastic_strains: None,
+            initial_damage: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

@@ -53,6 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             initial_stress_gradient: None,
             initial_stresses: None,
             initial_plastic_strains: None,
+            initial_damage: None,
         }],
         // Clamp: particle 0 (X = 0) held at zero velocity.
         boundaries: vec![BoundaryDescription {

@@ -119,6 +119,25 @@ impl DamageState {
         }
     }
 
+    /// Starts local particle `k` with damage `damage` (0 ≤ D < 1, checked by the caller) of
+    /// the law `model`: Peerlings also gets the history κ at which its law reaches D
+    /// ([`PeerlingsSoftening::history_for_damage`]), so it reloads on the secant (1 − D)E and
+    /// softens further only past κ; Grady–Kipp keeps D, which its growth law never lowers.
+    /// D = 0 leaves the particle as it is. Nothing for bodies without damage.
+    pub fn set_initial_damage(&mut self, model: &DamageModel, k: usize, damage: f64) {
+        let DamageState::Damaged(b) = self else {
+            return;
+        };
+        if damage == 0.0 {
+            return;
+        }
+        let point = &mut b.points[k];
+        point.damage = damage;
+        if let DamageModel::Peerlings(law) = model {
+            point.history = law.history_for_damage(damage).unwrap_or(point.history);
+        }
+    }
+
     /// Marks local particle `k` as failed and removed outside a constitutive update (a particle
     /// left without neighbours); nothing for bodies without damage.
     pub fn mark_removed(&mut self, k: usize) {

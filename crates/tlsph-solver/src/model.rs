@@ -378,6 +378,10 @@ pub struct BodyDescription<const D: usize> {
     /// a work-hardened part or the strain left by a forming step; only for elastic–plastic
     /// materials. See [`crate::Simulation::set_initial_plastic_strains`]. `None`: 0.
     pub initial_plastic_strains: Option<Vec<f64>>,
+    /// A softening damage D per particle at t = 0 (same order as `positions`), e.g. a part
+    /// damaged by an earlier load; only for materials with a damage law. See
+    /// [`crate::Simulation::set_initial_damage`]. `None`: 0.
+    pub initial_damage: Option<Vec<f64>>,
 }
 
 /// The linear initial stress σ0 + Σ_k X_k G_k at reference position `x` (σ0 and the

@@ -453,6 +453,9 @@ impl<const D: usize> Simulation<D> {
             if let Some(strains) = &body.initial_plastic_strains {
                 sim.set_initial_plastic_strains(b, strains)?;
             }
+            if let Some(damages) = &body.initial_damage {
+                sim.set_initial_damage(b, damages)?;
+            }
             if let Some(stresses) = &body.initial_stresses {
                 if body.initial_stress.is_some() || body.initial_stress_gradient.is_some() {
                     return Err(SetupError::InvalidBody {
@@ -1455,6 +1458,38 @@ impl<const D: usize> Simulation<D> {
         }
         for (k, &strain) in strains.iter().enumerate() {
             self.plastic[body].set_plastic_strain(k, strain);
+        }
+        Ok(())
+    }
+
+    /// Sets the softening damage D of body `body`'s particles before the first step
+    /// (`damages[k]` for its particle k, one per particle), e.g. a part damaged by an earlier
+    /// load (numerics.md §9.1–9.2): a particle carries σ_eff with its tensile part scaled by
+    /// (1 − D) from the start; a Peerlings law resumes from the history κ at which it reaches
+    /// D (it reloads on the secant (1 − D)E up to ε = κ), a Grady–Kipp law grows D further
+    /// only once its active flaws allow more. Refused for a material without a `damage` law,
+    /// and for a value that is not finite, negative, or 1 or more (a failed particle: leave it
+    /// out of the body instead); the error names the first particle.
+    pub fn set_initial_damage(&mut self, body: usize, damages: &[f64]) -> Result<(), SetupError> {
+        let field = "initial_damage";
+        let refuse = |message: String| Err(SetupError::InvalidConfig { field, message });
+        self.initial_field_range(body, field, damages.len(), "damage values")?;
+        let info = &self.bodies[body];
+        let Some(model) = self.materials[info.material].softening_damage().copied() else {
+            return refuse(format!(
+                "body `{}`: its material has no damage law (declare `damage` on it)",
+                info.name
+            ));
+        };
+        if let Some(k) = damages.iter().position(|d| !(0.0..1.0).contains(d)) {
+            return refuse(format!(
+                "{}: the damage must be a finite number with 0 ≤ D < 1, got {}",
+                self.particle_label(body, k),
+                damages[k]
+            ));
+        }
+        for (k, &damage) in damages.iter().enumerate() {
+            self.damage[body].set_initial_damage(&model, k, damage);
         }
         Ok(())
     }
@@ -2878,6 +2913,7 @@ mod penalty_contact_tests {
             initial_stress_gradient: None,
             initial_stresses: None,
             initial_plastic_strains: None,
+            initial_damage: None,
         }
     }
 
@@ -3029,6 +3065,7 @@ mod time_step_tests {
                 initial_stress_gradient: None,
                 initial_stresses: None,
                 initial_plastic_strains: None,
+                initial_damage: None,
             }],
             boundaries: vec![],
             effects: Default::default(),

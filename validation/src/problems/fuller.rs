@@ -80,6 +80,7 @@ pub fn model(
             initial_stress_gradient: None,
             initial_stresses: None,
             initial_plastic_strains: None,
+            initial_damage: None,
             positions,
         }],
         boundaries: loads

@@ -45,6 +45,7 @@ pub(super) fn body<const D: usize>(
         initial_stress_gradient: None,
         initial_stresses: None,
         initial_plastic_strains: None,
+        initial_damage: None,
     }
 }
 

@@ -526,3 +526,128 @@ fn damage_needs_the_jaumann_rate_update() {
         other => panic!("expected a stress_update error, got {other:?}"),
     }
 }
+
+#[test]
+fn initial_peerlings_damage_reloads_on_the_secant_then_softens_like_the_virgin_law() {
+    // A patch started at D0 = D(0.005) is the patch of the test above that was loaded to
+    // ε = 0.005 and unloaded: pulled again it carries σ = (1 − D0)Eε up to ε = 0.005 (the
+    // history κ(D0) = 0.005), then the virgin softening line, to failure (numerics.md §9.1).
+    let dx = 1.0;
+    let positions = lattice([10], dx);
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let mut m = damaged(
+        positions.clone(),
+        dx,
+        LinearElastic::new(1.0, 0.0).unwrap(),
+        DamageModel::Peerlings(law),
+        1e9,
+    );
+    let d0 = law.damage(0.005);
+    m.bodies[0].initial_damage = Some(vec![d0; positions.len()]);
+    let mut sim = Simulation::new(m).unwrap();
+    assert_eq!(sim.sample(ParticleField::Damage, 5), d0);
+    sim.step().unwrap();
+    let (mut secant, mut beyond) = (0, 0);
+    drive_past_failure(&mut sim, &positions, |sim, k, strain, _| {
+        // The history is κ(D0) = 0.005 to rounding: steps within 1e-12 of it are skipped.
+        if (strain - 0.005).abs() < 1e-12 {
+            return;
+        }
+        let expected = if strain < 0.005 {
+            secant += 1;
+            (1.0 - d0) * strain
+        } else {
+            beyond += 1;
+            peerlings_uniaxial(1.0, strain)
+        };
+        for i in 0..positions.len() {
+            let sigma = sim.stresses()[i][(0, 0)];
+            assert!(
+                (sigma - expected).abs() < 1e-12,
+                "step {k}, ε = {strain}: σ = {sigma}, expected {expected}"
+            );
+        }
+    });
+    assert!(
+        secant > 1000 && beyond > 1000,
+        "{secant} secant, {beyond} beyond"
+    );
+}
+
+#[test]
+fn initial_grady_kipp_damage_softens_until_the_flaws_grow_it() {
+    // An elastic patch started at D0 = 0.3, pulled below its first flaw: the damage stays D0
+    // and the patch carries σ_xx = (1 − D0)M ε (plane strain, every principal stress tensile);
+    // an undamaged twin carries M ε.
+    let dx = 1.0;
+    let positions = lattice([6, 6], dx);
+    let n = positions.len();
+    let elastic = LinearElastic::new(1.0, 0.3).unwrap();
+    let volume = n as f64 * dx * dx;
+    let gk = GradyKipp::new(GK_M, gk_k(volume)).unwrap();
+    let model = DamageModel::GradyKipp { model: gk, seed: 3 };
+    let d0 = 0.3;
+    let run = |initial: Option<Vec<f64>>| {
+        let mut m = damaged(positions.clone(), dx, elastic, model, 1e9);
+        m.bodies[0].initial_damage = initial;
+        let mut sim = Simulation::new(m).unwrap();
+        sim.step().unwrap();
+        // ε_eff = σ_xx/E = M ε/E: 0.9 of the first flaw's strain.
+        let e_over_m = elastic.youngs_modulus() / elastic.longitudinal_modulus();
+        let below = (0.9 * gk.activation_strain(1, volume) * e_over_m).exp();
+        let mut f = 1.0;
+        for k in 1..=100 {
+            let next = 1.0 + (below - 1.0) * k as f64 / 100.0;
+            drive_to(&mut sim, &positions, f, next);
+            f = next;
+        }
+        let damage: Vec<f64> = (0..n)
+            .map(|i| sim.sample(ParticleField::Damage, i))
+            .collect();
+        (damage, sim.stresses()[n / 2][(0, 0)], f.ln())
+    };
+    let (damage, sigma, strain) = run(Some(vec![d0; n]));
+    let (virgin_damage, virgin_sigma, _) = run(None);
+    assert!(damage.iter().all(|&d| d == d0), "{damage:?}");
+    assert!(virgin_damage.iter().all(|&d| d == 0.0));
+    let m = elastic.longitudinal_modulus();
+    assert!((virgin_sigma - m * strain).abs() < 1e-9 * virgin_sigma);
+    assert!((sigma - (1.0 - d0) * virgin_sigma).abs() < 1e-12 * virgin_sigma);
+}
+
+#[test]
+fn initial_damage_is_refused_outside_0_to_1_and_without_a_damage_law() {
+    let dx = 1.0;
+    let positions = lattice([6], dx);
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let elastic = LinearElastic::new(1.0, 0.0).unwrap();
+    let with = |damage: Vec<f64>, material_has_law: bool| {
+        let mut m = damaged(
+            positions.clone(),
+            dx,
+            elastic,
+            DamageModel::Peerlings(law),
+            1.0,
+        );
+        if !material_has_law {
+            m.materials[0].model = MaterialModel::LinearElastic(elastic);
+        }
+        m.bodies[0].initial_damage = Some(damage);
+        match Simulation::new(m) {
+            Err(SetupError::InvalidConfig { field, message }) => {
+                assert_eq!(field, "initial_damage");
+                message
+            }
+            other => panic!("expected an initial_damage error, got {other:?}"),
+        }
+    };
+    for bad in [1.0, -0.1, f64::NAN] {
+        let mut damage = vec![0.5; 6];
+        damage[4] = bad;
+        let message = with(damage, true);
+        assert!(message.contains("particle 4 at [4.5e0]"), "{message}");
+        assert!(message.contains("0 ≤ D < 1"), "{message}");
+    }
+    assert!(with(vec![0.5; 5], true).contains("has 6 particles but 5 damage values"));
+    assert!(with(vec![0.5; 6], false).contains("has no damage law"));
+}

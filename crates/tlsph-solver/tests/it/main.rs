@@ -122,6 +122,7 @@ fn model<const D: usize>(
             initial_stress_gradient: None,
             initial_stresses: None,
             initial_plastic_strains: None,
+            initial_damage: None,
             positions,
         }],
         boundaries: vec![],
