@@ -113,9 +113,10 @@ pub struct Scene {
 }
 
 /// How a field table (`initial_stress_file`, `initial_velocity_file`,
-/// `initial_plastic_strain_file`) met its body's particles, as `tlsph check` reports it: how
-/// many samples each particle's value came from, how far the nearest sample lay, and how many
-/// samples no particle used (a table reaching beyond the body, or misplaced).
+/// `initial_plastic_strain_file`, `initial_damage_file`) met its body's particles, as
+/// `tlsph check` reports it: how many samples each particle's value came from, how far the
+/// nearest sample lay, and how many samples no particle used (a table reaching beyond the body,
+/// or misplaced).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldTableSummary {
     /// The scene key, e.g. `body[plate].initial_stress_file`.
@@ -1483,6 +1484,8 @@ fn build_body<const D: usize>(
     }
     let initial_plastic_strains =
         initial_plastic_strains::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
+    let initial_damage =
+        initial_damage::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
     // Each particle's ε̄p for the yield checks below; `None` where it is not known (its table
     // is not read, for `tlsph particles`), and then no yield check is made.
     let plastic_strain_unknown = b.initial_plastic_strain_file.is_some() && !ctx.read_field_tables;
@@ -1555,6 +1558,7 @@ fn build_body<const D: usize>(
         initial_stress_gradient,
         initial_stresses,
         initial_plastic_strains,
+        initial_damage,
     })
 }
 
@@ -1742,6 +1746,112 @@ fn initial_stress_file<const D: usize>(
     Ok(stresses)
 }
 
+/// A scalar initial field of a body, given by a uniform key (`initial_plastic_strain`) or by a
+/// field table of one column (`initial_plastic_strain_file`), never both.
+struct ScalarInitialField<'a> {
+    uniform: Option<&'a Spanned<f64>>,
+    table: Option<&'a Spanned<FieldFileTable>>,
+    /// The uniform key and the table key.
+    keys: [&'static str; 2],
+    /// The table's column: the name of the output field.
+    column: &'static [&'static str; 1],
+    /// What the field is, in messages ("plastic strain").
+    what: &'static str,
+    /// Whether a value is allowed, the rule in words ("≥ 0"), and what to do instead, appended
+    /// to the error ("" or " (...)").
+    allowed: fn(f64) -> bool,
+    rule: &'static str,
+    hint: &'static str,
+    /// A linear fit's value, given the fitted value and the table's largest value: the fit may
+    /// undershoot or overshoot at the edge of a region of constant value.
+    fitted: fn(f64, f64) -> f64,
+}
+
+impl ScalarInitialField<'_> {
+    /// The declared key and its span, or `None` if the body declares neither key.
+    fn declared(
+        &self,
+        ctx: &Context<'_>,
+        field: &dyn Fn(&str) -> String,
+    ) -> Result<Option<(Range<usize>, &'static str)>, SceneError> {
+        let [uniform_key, table_key] = self.keys;
+        match (self.uniform, self.table) {
+            (None, None) => Ok(None),
+            (Some(_), Some(t)) => Err(ctx.error(
+                &t.span(),
+                &field(table_key),
+                format!(
+                    "gives the whole {} field, so `{uniform_key}` cannot be declared with it",
+                    self.what
+                ),
+            )),
+            (Some(v), None) => Ok(Some((v.span(), uniform_key))),
+            (None, Some(t)) => Ok(Some((t.span(), table_key))),
+        }
+    }
+
+    /// The value of each particle at `positions` and, for messages, where it came from (" (line
+    /// L of `path`)"); `None` if the body declares neither key or its table is not read. The
+    /// uniform value and every table cell must be allowed (the error names the key, or the
+    /// table's line); a linear fit's value is passed through `fitted`.
+    #[allow(clippy::type_complexity)]
+    fn values<const D: usize>(
+        &self,
+        ctx: &Context<'_>,
+        field: &dyn Fn(&str) -> String,
+        spacing: f64,
+        positions: &[Vector<D>],
+    ) -> Result<Option<(Vec<f64>, Box<dyn Fn(usize) -> String>)>, SceneError> {
+        let [uniform_key, table_key] = self.keys;
+        match (self.uniform, self.table) {
+            (Some(v), _) => {
+                let value = *v.get_ref();
+                if !(value.is_finite() && (self.allowed)(value)) {
+                    return Err(ctx.error(
+                        &v.span(),
+                        &field(uniform_key),
+                        format!(
+                            "must be a finite number {}, got {value}{}",
+                            self.rule, self.hint
+                        ),
+                    ));
+                }
+                Ok(Some((
+                    vec![value; positions.len()],
+                    Box::new(|_| String::new()),
+                )))
+            }
+            (None, Some(t)) if ctx.read_field_tables => {
+                let key = field(table_key);
+                let (samples, mapping, path) =
+                    mapped_field_table(ctx, t, &key, self.column, spacing, positions, |_| Ok(()))?;
+                if let Some(s) = samples.values.iter().position(|v| !(self.allowed)(v[0])) {
+                    return Err(ctx.error(
+                        &t.get_ref().path.span(),
+                        &format!("{key}.path"),
+                        format!(
+                            "`{}` line {}: `{}` must be {}, got {}{}",
+                            path.display(),
+                            samples.lines[s],
+                            self.column[0],
+                            self.rule,
+                            samples.values[s][0],
+                            self.hint
+                        ),
+                    ));
+                }
+                let largest = samples.values.iter().map(|v| v[0]).fold(0.0, f64::max);
+                let values = (0..positions.len())
+                    .map(|k| (self.fitted)(mapping.values(&samples, k)[0], largest))
+                    .collect();
+                let source = move |k| format!(" ({})", sample_source(&samples, &mapping, k, &path));
+                Ok(Some((values, Box::new(source))))
+            }
+            _ => Ok(None),
+        }
+    }
+}
+
 /// The effective plastic strain ε̄p of each particle at t = 0 from `initial_plastic_strain`
 /// (uniform) or `initial_plastic_strain_file` (a CSV table with the column `plastic_strain`,
 /// mapped as the other field tables), or `None` if the body declares neither (or its table is
@@ -1757,17 +1867,19 @@ fn initial_plastic_strains<const D: usize>(
     spacing: f64,
     positions: &[Vector<D>],
 ) -> Result<Option<Vec<f64>>, SceneError> {
-    let (span, key) = match (&b.initial_plastic_strain, &b.initial_plastic_strain_file) {
-        (None, None) => return Ok(None),
-        (Some(_), Some(t)) => {
-            return Err(ctx.error(
-                &t.span(),
-                &field("initial_plastic_strain_file"),
-                "gives the whole plastic strain field, so `initial_plastic_strain` cannot be declared with it".into(),
-            ))
-        }
-        (Some(v), None) => (v.span(), "initial_plastic_strain"),
-        (None, Some(t)) => (t.span(), "initial_plastic_strain_file"),
+    let strain_field = ScalarInitialField {
+        uniform: b.initial_plastic_strain.as_ref(),
+        table: b.initial_plastic_strain_file.as_ref(),
+        keys: ["initial_plastic_strain", "initial_plastic_strain_file"],
+        column: &crate::scene_field_file::PLASTIC_STRAIN_COLUMNS,
+        what: "plastic strain",
+        allowed: |e| e >= 0.0,
+        rule: "≥ 0",
+        hint: "",
+        fitted: |e, _| e.max(0.0),
+    };
+    let Some((span, key)) = strain_field.declared(ctx, field)? else {
+        return Ok(None);
     };
     let MaterialModel::ElasticPlastic(plastic) = &material.model else {
         return Err(ctx.error(
@@ -1779,49 +1891,9 @@ fn initial_plastic_strains<const D: usize>(
             ),
         ));
     };
-    let (strains, source): (Vec<f64>, Box<dyn Fn(usize) -> String>) =
-        match (&b.initial_plastic_strain, &b.initial_plastic_strain_file) {
-            (Some(v), _) => {
-                let value = *v.get_ref();
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(ctx.error(
-                        &span,
-                        &field(key),
-                        format!("must be a finite number ≥ 0, got {value}"),
-                    ));
-                }
-                (vec![value; positions.len()], Box::new(|_| String::new()))
-            }
-            (None, Some(t)) if ctx.read_field_tables => {
-                let (samples, mapping, path) = mapped_field_table(
-                    ctx,
-                    t,
-                    &field(key),
-                    &crate::scene_field_file::PLASTIC_STRAIN_COLUMNS,
-                    spacing,
-                    positions,
-                    |_| Ok(()),
-                )?;
-                if let Some(s) = samples.values.iter().position(|v| v[0] < 0.0) {
-                    return Err(ctx.error(
-                        &t.get_ref().path.span(),
-                        &format!("{}.path", field(key)),
-                        format!(
-                            "`{}` line {}: `plastic_strain` must be ≥ 0, got {}",
-                            path.display(),
-                            samples.lines[s],
-                            samples.values[s][0]
-                        ),
-                    ));
-                }
-                let strains = (0..positions.len())
-                    .map(|k| mapping.values(&samples, k)[0].max(0.0))
-                    .collect();
-                let source = move |k| format!(" ({})", sample_source(&samples, &mapping, k, &path));
-                (strains, Box::new(source))
-            }
-            _ => return Ok(None),
-        };
+    let Some((strains, source)) = strain_field.values(ctx, field, spacing, positions)? else {
+        return Ok(None);
+    };
     if let Some(tlsph_solver::FailureModel::MaxPlasticStrain(limit)) = plastic.failure {
         if let Some(k) = strains.iter().position(|e| limit.fails(*e)) {
             return Err(ctx.error(
@@ -1838,6 +1910,50 @@ fn initial_plastic_strains<const D: usize>(
         }
     }
     Ok(Some(strains))
+}
+
+/// The softening damage D of each particle at t = 0 from `initial_damage` (uniform) or
+/// `initial_damage_file` (a CSV table with the column `damage`, the name of the output field,
+/// mapped as the other field tables), or `None` if the body declares neither (or its table is
+/// not read). Only for materials with a `damage` law; every value in \[0, 1) (a failed particle,
+/// D = 1, is not started: it would be cut from the body). A linear fit is kept within
+/// \[0, the table's largest value\].
+fn initial_damage<const D: usize>(
+    ctx: &Context<'_>,
+    b: &BodyTable,
+    field: &dyn Fn(&str) -> String,
+    material: &MaterialDescription,
+    spacing: f64,
+    positions: &[Vector<D>],
+) -> Result<Option<Vec<f64>>, SceneError> {
+    let damage_field = ScalarInitialField {
+        uniform: b.initial_damage.as_ref(),
+        table: b.initial_damage_file.as_ref(),
+        keys: ["initial_damage", "initial_damage_file"],
+        column: &crate::scene_field_file::DAMAGE_COLUMNS,
+        what: "damage",
+        allowed: |d| (0.0..1.0).contains(&d),
+        rule: "≥ 0 and < 1",
+        hint:
+            " (D = 1 is a failed particle: leave that part out of the body with a `[[body.cut]]`)",
+        fitted: |d, largest| d.clamp(0.0, largest),
+    };
+    let Some((span, key)) = damage_field.declared(ctx, field)? else {
+        return Ok(None);
+    };
+    if material.model.softening_damage().is_none() {
+        return Err(ctx.error(
+            &span,
+            &field(key),
+            format!(
+                "material `{}` has no damage law (declare `damage` on it)",
+                material.name
+            ),
+        ));
+    }
+    Ok(damage_field
+        .values(ctx, field, spacing, positions)?
+        .map(|(damages, _)| damages))
 }
 
 /// Reads the table of a field-table key (`{ path, reach, interpolation }`) with the given

@@ -314,6 +314,10 @@ pub(crate) struct BodyTable {
     pub initial_plastic_strain: Option<Spanned<f64>>,
     /// An effective plastic strain field read from a CSV file of sample points.
     pub initial_plastic_strain_file: Option<Spanned<FieldFileTable>>,
+    /// Uniform softening damage D of every particle at t = 0 (a part damaged before).
+    pub initial_damage: Option<Spanned<f64>>,
+    /// A damage field read from a CSV file of sample points.
+    pub initial_damage_file: Option<Spanned<FieldFileTable>>,
 }
 
 /// `initial_stress_file = { path = "residual.csv", reach = 2e-3, interpolation = "linear" }`

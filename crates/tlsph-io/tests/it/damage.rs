@@ -274,3 +274,92 @@ fn damage_is_rejected_where_it_cannot_act() {
     let err = error_of(&text);
     assert_eq!(err.field, "probe[middle].fields");
 }
+
+/// [`DAMAGED`] with `extra` appended to the bar body's table.
+fn with_bar_lines(extra: &str) -> String {
+    let anchor = "box = { min = [0.0, 0.0], max = [4.0, 10.0] }\n";
+    assert_eq!(DAMAGED.matches(anchor).count(), 1);
+    DAMAGED.replace(anchor, &format!("{anchor}{extra}\n"))
+}
+
+fn model_2d(scene: tlsph_io::Scene) -> tlsph_solver::Model<2> {
+    match scene.model {
+        DimensionModel::Two(m) => m,
+        _ => unreachable!("a 2D scene"),
+    }
+}
+
+#[test]
+fn an_initial_damage_is_read_uniform_or_from_a_table() {
+    // Uniform: every particle of the bar, none of the plate, and the run starts from it.
+    let model = model_2d(parse_scene(&with_bar_lines("initial_damage = 0.2"), "s.toml").unwrap());
+    assert_eq!(model.bodies[0].initial_damage, Some(vec![0.2; 40]));
+    assert_eq!(model.bodies[1].initial_damage, None);
+    let sim = tlsph_solver::Simulation::new(model).unwrap();
+    assert_eq!(sim.sample(tlsph_solver::ParticleField::Damage, 7), 0.2);
+    // A table of D = 0.1 X on x = 0.5, 1.5, 2.5 (every y): the linear fit gives it back on the
+    // sampled columns and would extrapolate to 0.35 on the bar's last one, x = 3.5; it is
+    // kept within the table's largest value, 0.25.
+    let dir = tempfile::tempdir().unwrap();
+    let mut table = String::from("x, y, damage\n");
+    for x in [0.5, 1.5, 2.5] {
+        for j in 0..10 {
+            table += &format!("{x}, {}, {}\n", j as f64 + 0.5, 0.1 * x);
+        }
+    }
+    let key = "initial_damage_file = { path = \"fields/d.csv\", reach = 2.5, interpolation = \"linear\" }";
+    let scene = super::load_with_table(dir.path(), &with_bar_lines(key), "fields/d.csv", &table);
+    let model = model_2d(scene.unwrap());
+    let body = &model.bodies[0];
+    let damage = body.initial_damage.as_ref().unwrap();
+    let mut extrapolated = 0;
+    for (x, d) in body.positions.iter().zip(damage) {
+        if x.x < 3.0 {
+            assert!((d - 0.1 * x.x).abs() < 1e-14, "D {d} at {x:?}");
+        } else {
+            assert_eq!(*d, 0.25, "D at {x:?}");
+            extrapolated += 1;
+        }
+    }
+    assert_eq!(extrapolated, 10);
+}
+
+#[test]
+fn initial_damage_errors_name_the_field_and_line() {
+    let e = parse_scene(&with_bar_lines("initial_damage = 1.0"), "s.toml").unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_damage", "{e}");
+    assert!(
+        e.message
+            .contains("finite number ≥ 0 and < 1, got 1 (D = 1 is a failed"),
+        "{e}"
+    );
+    // A material without a damage law.
+    let peerlings = "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }\n";
+    let undamaged = with_bar_lines("initial_damage = 0.1").replace(peerlings, "");
+    let e = parse_scene(&undamaged, "s.toml").unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_damage", "{e}");
+    assert!(
+        e.message.contains("material `bar` has no damage law"),
+        "{e}"
+    );
+    // A table cell of 1 (a failed particle) names its line; both keys together are refused.
+    let dir = tempfile::tempdir().unwrap();
+    let key = "initial_damage_file = { path = \"fields/d.csv\", reach = 10.0 }";
+    let table = "x, y, damage\n1.0, 1.0, 0.5\n3.0, 5.0, 1.0\n";
+    let e = super::load_with_table(dir.path(), &with_bar_lines(key), "fields/d.csv", table)
+        .unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_damage_file.path", "{e}");
+    assert!(
+        e.message.contains("line 3: `damage` must be ≥ 0 and < 1"),
+        "{e}"
+    );
+    let both = with_bar_lines(&format!("{key}\ninitial_damage = 0.1"));
+    let table = "x, y, damage\n1.0, 1.0, 0.5\n";
+    let e = super::load_with_table(dir.path(), &both, "fields/d.csv", table).unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_damage_file", "{e}");
+    assert!(
+        e.message
+            .contains("`initial_damage` cannot be declared with it"),
+        "{e}"
+    );
+}
