@@ -99,6 +99,7 @@ fn block(n: usize, formulation: Formulation, material: MaterialModel) -> Simulat
             initial_stresses: None,
             initial_plastic_strains: None,
             initial_damage: None,
+            initial_failure_damage: None,
         }],
         boundaries: vec![],
         effects: Default::default(),

@@ -54,6 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             initial_stresses: None,
             initial_plastic_strains: None,
             initial_damage: None,
+            initial_failure_damage: None,
         }],
         // Clamp: particle 0 (X = 0) held at zero velocity.
         boundaries: vec![BoundaryDescription {

@@ -285,6 +285,15 @@ impl MaterialModel {
         }
     }
 
+    /// The failure criterion of the material (numerics.md §8.6–8.9); `None` without one (elastic
+    /// materials have none).
+    pub fn failure(&self) -> Option<&FailureModel> {
+        match self {
+            MaterialModel::ElasticPlastic(m) => m.failure.as_ref(),
+            MaterialModel::LinearElastic(_) | MaterialModel::ElasticDamage(_) => None,
+        }
+    }
+
     /// Whether the model carries a temperature.
     pub fn has_temperature(&self) -> bool {
         matches!(self, MaterialModel::ElasticPlastic(m) if m.thermal.is_some())
@@ -382,6 +391,11 @@ pub struct BodyDescription<const D: usize> {
     /// damaged by an earlier load; only for materials with a damage law. See
     /// [`crate::Simulation::set_initial_damage`]. `None`: 0.
     pub initial_damage: Option<Vec<f64>>,
+    /// A Johnson–Cook cumulative damage D per particle at t = 0 (same order as `positions`),
+    /// e.g. the ductile damage left by a forming step; only for materials with a
+    /// `johnson-cook` failure law. See [`crate::Simulation::set_initial_failure_damage`].
+    /// `None`: 0.
+    pub initial_failure_damage: Option<Vec<f64>>,
 }
 
 /// The linear initial stress σ0 + Σ_k X_k G_k at reference position `x` (σ0 and the

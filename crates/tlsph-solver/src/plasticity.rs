@@ -70,6 +70,17 @@ impl PlasticState {
         }
     }
 
+    /// Sets the Johnson–Cook cumulative damage D = Σ Δε̄p/ε_f of local particle `k`
+    /// (numerics.md §8.6; 0 ≤ D < 1, checked by the caller): the particle fails once the
+    /// increments add the remaining 1 − D. Nothing for a body without a failure model.
+    pub fn set_failure_damage(&mut self, k: usize, damage: f64) {
+        match self {
+            PlasticState::StrainDamage(v) => v[k][1] = damage,
+            PlasticState::StrainTemperatureDamage(v) => v[k][2] = damage,
+            _ => {}
+        }
+    }
+
     /// Effective plastic strain of local particle `k`, if the body has one.
     pub fn plastic_strain(&self, k: usize) -> Option<f64> {
         match self {

@@ -456,6 +456,9 @@ impl<const D: usize> Simulation<D> {
             if let Some(damages) = &body.initial_damage {
                 sim.set_initial_damage(b, damages)?;
             }
+            if let Some(damages) = &body.initial_failure_damage {
+                sim.set_initial_failure_damage(b, damages)?;
+            }
             if let Some(stresses) = &body.initial_stresses {
                 if body.initial_stress.is_some() || body.initial_stress_gradient.is_some() {
                     return Err(SetupError::InvalidBody {
@@ -1475,23 +1478,80 @@ impl<const D: usize> Simulation<D> {
         let refuse = |message: String| Err(SetupError::InvalidConfig { field, message });
         self.initial_field_range(body, field, damages.len(), "damage values")?;
         let info = &self.bodies[body];
-        let Some(model) = self.materials[info.material].softening_damage().copied() else {
+        let material = &self.materials[info.material];
+        let Some(model) = material.softening_damage().copied() else {
+            let hint = if matches!(material.failure(), Some(FailureModel::JohnsonCook { .. })) {
+                "; its Johnson–Cook failure damage is set by `initial_failure_damage`"
+            } else {
+                ""
+            };
             return refuse(format!(
-                "body `{}`: its material has no damage law (declare `damage` on it)",
+                "body `{}`: its material has no damage law (declare `damage` on it){hint}",
                 info.name
             ));
         };
-        if let Some(k) = damages.iter().position(|d| !(0.0..1.0).contains(d)) {
-            return refuse(format!(
-                "{}: the damage must be a finite number with 0 ≤ D < 1, got {}",
-                self.particle_label(body, k),
-                damages[k]
-            ));
-        }
+        self.check_damage_range(body, field, damages)?;
         for (k, &damage) in damages.iter().enumerate() {
             self.damage[body].set_initial_damage(&model, k, damage);
         }
         Ok(())
+    }
+
+    /// Sets the Johnson–Cook cumulative damage D = Σ Δε̄p/ε_f of body `body`'s particles
+    /// before the first step (`damages[k]` for its particle k, one per particle), e.g. the
+    /// ductile damage left by a forming step or an earlier impact (numerics.md §8.6): a
+    /// particle fails once its plastic increments add the remaining 1 − D. The damage does not
+    /// soften the stress (Johnson–Cook damage never does). Refused for a material without a
+    /// `johnson-cook` failure law, and for a value that is not finite, negative, or 1 or more
+    /// (a failed particle: leave it out of the body instead); the error names the first
+    /// particle.
+    pub fn set_initial_failure_damage(
+        &mut self,
+        body: usize,
+        damages: &[f64],
+    ) -> Result<(), SetupError> {
+        let field = "initial_failure_damage";
+        self.initial_field_range(body, field, damages.len(), "damage values")?;
+        let info = &self.bodies[body];
+        if !matches!(
+            self.materials[info.material].failure(),
+            Some(FailureModel::JohnsonCook { .. })
+        ) {
+            return Err(SetupError::InvalidConfig {
+                field,
+                message: format!(
+                    "body `{}`: its material has no Johnson–Cook failure law (declare `failure` \
+                     with model `johnson-cook` on it)",
+                    info.name
+                ),
+            });
+        }
+        self.check_damage_range(body, field, damages)?;
+        for (k, &damage) in damages.iter().enumerate() {
+            self.plastic[body].set_failure_damage(k, damage);
+        }
+        Ok(())
+    }
+
+    /// Refuses (as `field`) the first of body `body`'s initial damage values that is not a
+    /// finite number in [0, 1), naming its particle.
+    fn check_damage_range(
+        &self,
+        body: usize,
+        field: &'static str,
+        damages: &[f64],
+    ) -> Result<(), SetupError> {
+        match damages.iter().position(|d| !(0.0..1.0).contains(d)) {
+            None => Ok(()),
+            Some(k) => Err(SetupError::InvalidConfig {
+                field,
+                message: format!(
+                    "{}: the damage must be a finite number with 0 ≤ D < 1, got {}",
+                    self.particle_label(body, k),
+                    damages[k]
+                ),
+            }),
+        }
     }
 
     /// The particle range of body `body` for a setter of an initial field given per particle
@@ -2914,6 +2974,7 @@ mod penalty_contact_tests {
             initial_stresses: None,
             initial_plastic_strains: None,
             initial_damage: None,
+            initial_failure_damage: None,
         }
     }
 
@@ -3066,6 +3127,7 @@ mod time_step_tests {
                 initial_stresses: None,
                 initial_plastic_strains: None,
                 initial_damage: None,
+                initial_failure_damage: None,
             }],
             boundaries: vec![],
             effects: Default::default(),

@@ -81,6 +81,7 @@ pub fn model(
             initial_stresses: None,
             initial_plastic_strains: None,
             initial_damage: None,
+            initial_failure_damage: None,
             positions,
         }],
         boundaries: loads

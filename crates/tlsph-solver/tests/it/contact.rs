@@ -46,6 +46,7 @@ pub(super) fn body<const D: usize>(
         initial_stresses: None,
         initial_plastic_strains: None,
         initial_damage: None,
+        initial_failure_damage: None,
     }
 }
 

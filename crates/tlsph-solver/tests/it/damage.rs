@@ -339,7 +339,7 @@ fn peerlings_softens_a_yielding_plastic_patch_through_its_effective_stress() {
     // (≥ 0 past yield). The body feels each positive principal value times (1 − D(ε))
     // (numerics.md §9.1), and the plastic strain runs on undisturbed by the damage. Same 1e-12
     // argument as the elastic patch above. The patch fails at κc.
-    assert!(!peerlings_plastic_patch(None));
+    assert!(!peerlings_plastic_patch(None, 0.0));
 }
 
 #[test]
@@ -347,7 +347,7 @@ fn a_failure_criterion_fails_a_softening_plastic_patch_when_it_comes_first() {
     // The patch above with a maximum-plastic-strain criterion as well: ε̄p = ⅔(ε − ε_y)
     // reaches the limit 4e-3 at ε = 6.5e-3, inside the softening branch (D = 0.61). Up to
     // there the patch follows the softened law, and from there on every particle has failed.
-    assert!(peerlings_plastic_patch(Some(4e-3)));
+    assert!(peerlings_plastic_patch(Some(4e-3), 0.0));
 }
 
 #[test]
@@ -361,14 +361,24 @@ fn a_particle_reaching_both_limits_in_one_step_fails_once() {
     let between = 0.5 * (strains[first - 1] + strains[first]);
     let limit = 2.0 / 3.0 * (between - 5e-4);
     // Fails at κc, not before: the criterion's own step.
-    assert!(!peerlings_plastic_patch(Some(limit)));
+    assert!(!peerlings_plastic_patch(Some(limit), 0.0));
+}
+
+#[test]
+fn an_initial_damage_on_a_yielding_plastic_patch_holds_until_its_history_then_softens() {
+    // The patch of the first test above started at D0 = D(0.005), as if loaded to ε = 0.005
+    // and unloaded: its effective stress is that of the virgin plastic patch (the damage does
+    // not touch the plastic flow), felt with (1 − D0) up to ε = 0.005 and with the virgin D(ε)
+    // beyond (numerics.md §9.1).
+    assert!(!peerlings_plastic_patch(None, 0.005));
 }
 
 /// Drives the 1D Peerlings patch of a yielding plastic material (see the first caller), with
-/// a maximum-plastic-strain failure criterion `failure_limit` when given, past failure,
-/// checking σ, ε̄p and the damage field against the laws at every step. Returns whether the
-/// patch failed while its damage D was still below 1 (by the criterion).
-fn peerlings_plastic_patch(failure_limit: Option<f64>) -> bool {
+/// a maximum-plastic-strain failure criterion `failure_limit` when given and started at the
+/// damage D(`damaged_to`) (0: intact), past failure, checking σ, ε̄p and the damage field
+/// against the laws at every step. Returns whether the patch failed while its damage D was
+/// still below 1 (by the criterion).
+fn peerlings_plastic_patch(failure_limit: Option<f64>, damaged_to: f64) -> bool {
     use tlsph_materials::MaxPlasticStrainFailure;
     let dx = 1.0;
     let positions = lattice([12], dx);
@@ -381,12 +391,24 @@ fn peerlings_plastic_patch(failure_limit: Option<f64>) -> bool {
             MaxPlasticStrainFailure::new(limit).unwrap(),
         ));
     }
-    let mut sim = Simulation::new(with_material(positions.clone(), dx, material, 1e9)).unwrap();
+    let mut m = with_material(positions.clone(), dx, material, 1e9);
+    if damaged_to > 0.0 {
+        m.bodies[0].initial_damage = Some(vec![law.damage(damaged_to); positions.len()]);
+    }
+    let mut sim = Simulation::new(m).unwrap();
     assert!(sim.has_failure());
     sim.step().unwrap();
     let (bulk, yield_strain) = (1.0 / 3.0, 5e-4);
     let mut failed_by_criterion = false;
+    let mut held = 0;
     drive_past_failure(&mut sim, &positions, |sim, k, strain, failed_now| {
+        // The history is κ(D0) = `damaged_to` to rounding: steps within 1e-12 of it are skipped.
+        if damaged_to > 0.0 && (strain - damaged_to).abs() < 1e-12 {
+            return;
+        }
+        if strain < damaged_to {
+            held += 1;
+        }
         let (xx, yy, plastic) = if strain <= yield_strain {
             (strain, 0.0, 0.0)
         } else {
@@ -397,7 +419,8 @@ fn peerlings_plastic_patch(failure_limit: Option<f64>) -> bool {
                 2.0 / 3.0 * (strain - yield_strain),
             )
         };
-        let d = law.damage(strain); // κ = ε on this monotone path
+        // κ = max(ε, κ(D0)) on this monotone path.
+        let d = law.damage(strain.max(damaged_to));
         if let Some(limit) = failure_limit {
             // Away from the limit by more than round-off, the criterion decides.
             if (plastic - limit).abs() > 1e-9 {
@@ -430,6 +453,9 @@ fn peerlings_plastic_patch(failure_limit: Option<f64>) -> bool {
             }
         }
     });
+    if damaged_to > 0.0 {
+        assert!(held > 1000, "{held} steps below the initial history");
+    }
     failed_by_criterion
 }
 
@@ -650,4 +676,138 @@ fn initial_damage_is_refused_outside_0_to_1_and_without_a_damage_law() {
     }
     assert!(with(vec![0.5; 5], true).contains("has 6 particles but 5 damage values"));
     assert!(with(vec![0.5; 6], false).contains("has no damage law"));
+}
+
+/// A 1D perfectly plastic von Mises patch (E = 1, ν = 0, σ_y = 5e-4) with a Johnson–Cook
+/// failure law of constant failure strain ε_f = D1 = 2e-3 (D2 … D5 = 0), started at the
+/// failure damage `initial` (if given), driven through [`driven_stretches`]; returns the
+/// Hencky strain at which every particle has failed. `heated`: with adiabatic heating (the
+/// state then also carries a temperature; ε_f does not depend on it, D5 = 0).
+fn johnson_cook_patch_failure_strain(initial: Option<f64>, heated: bool) -> f64 {
+    use tlsph_materials::JohnsonCookFailure;
+    let dx = 1.0;
+    let positions = lattice([8], dx);
+    let n = positions.len();
+    let (sigma_y, strain_to_failure) = (5e-4, 2e-3);
+    let material = MaterialModel::ElasticPlastic(ElasticPlastic {
+        elastic: LinearElastic::new(1.0, 0.0).unwrap(),
+        strength: StrengthModel::VonMises(VonMisesPlasticity::new(sigma_y, 0.0).unwrap()),
+        pressure: PressureModel::Hypoelastic,
+        min_pressure: None,
+        thermal: heated.then_some(tlsph_solver::Thermal {
+            specific_heat: 1.0,
+            room_temperature: 293.0,
+        }),
+        failure: Some(tlsph_solver::FailureModel::JohnsonCook {
+            model: JohnsonCookFailure::new(strain_to_failure, 0.0, 0.0, 0.0, 0.0).unwrap(),
+            reference_strain_rate: 1.0,
+            room_temperature: 293.0,
+            melt_temperature: 1356.0,
+        }),
+        damage: None,
+    });
+    let mut m = with_material(positions.clone(), dx, material, 1e9);
+    m.bodies[0].initial_failure_damage = initial.map(|d| vec![d; n]);
+    let mut sim = Simulation::new(m).unwrap();
+    let d0 = initial.unwrap_or(0.0);
+    assert_eq!(sim.sample(ParticleField::Damage, 3), d0);
+    sim.step().unwrap();
+    let mut f = 1.0;
+    for (k, next) in (1..).zip(driven_stretches()) {
+        drive_to(&mut sim, &positions, f, next);
+        f = next;
+        let strain = f.ln();
+        if sim.failed_particles() == n {
+            return strain;
+        }
+        assert_eq!(
+            sim.failed_particles(),
+            0,
+            "step {k}: the patch fails as one"
+        );
+        // D = D0 + ε̄p/ε_f with ε̄p = ⅔(ε − ε_y) past yield (Δε̄p = ⅔Δε on the surface). ε̄p
+        // follows this to 1e-12 (the plastic patch above), so D to 1e-12/ε_f = 5e-10.
+        let plastic = (2.0 / 3.0 * (strain - sigma_y)).max(0.0);
+        let expected = d0 + plastic / strain_to_failure;
+        for i in 0..n {
+            let d = sim.sample(ParticleField::Damage, i);
+            assert!((d - expected).abs() < 1e-9, "step {k}: D = {d}, {expected}");
+        }
+    }
+    panic!("the patch did not fail by ε = 0.012");
+}
+
+#[test]
+fn an_initial_johnson_cook_damage_leaves_the_rest_of_the_failure_strain() {
+    // Started at D0 the patch fails once ε̄p/ε_f adds 1 − D0 (numerics.md §8.6): at
+    // ε̄p = (1 − D0) ε_f, ε = ε_y + 1.5 (1 − D0) ε_f; intact at ε = 3.5e-3, with D0 = 0.5 at
+    // 2e-3 and with D0 = 0.9 at 8e-4. The patch is driven in steps of Δε = 4e-6, so it fails
+    // in the step that crosses the strain: within 4e-6 above it.
+    let (yield_strain, strain_to_failure) = (5e-4, 2e-3);
+    // With heating the damage sits at another place of the particle's state.
+    for (d0, heated) in [
+        (None, false),
+        (Some(0.5), false),
+        (Some(0.9), false),
+        (Some(0.5), true),
+    ] {
+        let failed_at = johnson_cook_patch_failure_strain(d0, heated);
+        let expected = yield_strain + 1.5 * (1.0 - d0.unwrap_or(0.0)) * strain_to_failure;
+        assert!(
+            failed_at >= expected - 1e-12 && failed_at < expected + 4.1e-6,
+            "D0 = {d0:?}, heated {heated}: failed at ε = {failed_at}, expected {expected}"
+        );
+    }
+}
+
+#[test]
+fn an_initial_johnson_cook_damage_is_refused_outside_0_to_1_and_without_the_law() {
+    let dx = 1.0;
+    let positions = lattice([6], dx);
+    let elastic = LinearElastic::new(1.0, 0.0).unwrap();
+    let law = PeerlingsSoftening::new(KAPPA0, KAPPA_C).unwrap();
+    let with = |damage: Vec<f64>, material: MaterialModel| {
+        let mut m = with_material(positions.clone(), dx, material, 1.0);
+        m.bodies[0].initial_failure_damage = Some(damage);
+        match Simulation::new(m) {
+            Err(SetupError::InvalidConfig { field, message }) => {
+                assert_eq!(field, "initial_failure_damage");
+                message
+            }
+            other => panic!("expected an initial_failure_damage error, got {other:?}"),
+        }
+    };
+    let mut johnson_cook = plastic_with_damage(elastic, 1.0, DamageModel::Peerlings(law));
+    if let MaterialModel::ElasticPlastic(p) = &mut johnson_cook {
+        p.damage = None;
+        p.failure = Some(tlsph_solver::FailureModel::JohnsonCook {
+            model: tlsph_materials::JohnsonCookFailure::new(0.5, 0.0, 0.0, 0.0, 0.0).unwrap(),
+            reference_strain_rate: 1.0,
+            room_temperature: 293.0,
+            melt_temperature: 1356.0,
+        });
+    }
+    for bad in [1.0, -0.1, f64::NAN] {
+        let mut damage = vec![0.5; 6];
+        damage[4] = bad;
+        let message = with(damage, johnson_cook);
+        assert!(message.contains("particle 4 at [4.5e0]"), "{message}");
+        assert!(message.contains("0 ≤ D < 1"), "{message}");
+    }
+    assert!(with(vec![0.5; 5], johnson_cook).contains("has 6 particles but 5 damage values"));
+    // A softening law is not a Johnson–Cook failure law.
+    let softening = plastic_with_damage(elastic, 1.0, DamageModel::Peerlings(law));
+    assert!(with(vec![0.5; 6], softening).contains("has no Johnson–Cook failure law"));
+    // And the softening key names this one on a material with only the failure law.
+    let mut m = with_material(positions.clone(), dx, johnson_cook, 1.0);
+    m.bodies[0].initial_damage = Some(vec![0.5; 6]);
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig { message, .. }) => {
+            assert!(
+                message.contains("set by `initial_failure_damage`"),
+                "{message}"
+            )
+        }
+        other => panic!("expected an initial_damage error, got {other:?}"),
+    }
 }

@@ -123,6 +123,7 @@ fn model<const D: usize>(
             initial_stresses: None,
             initial_plastic_strains: None,
             initial_damage: None,
+            initial_failure_damage: None,
             positions,
         }],
         boundaries: vec![],
