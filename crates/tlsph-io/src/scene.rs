@@ -113,7 +113,8 @@ pub struct Scene {
 }
 
 /// How a field table (`initial_stress_file`, `initial_velocity_file`,
-/// `initial_plastic_strain_file`, `initial_damage_file`) met its body's particles, as
+/// `initial_plastic_strain_file`, `initial_damage_file`, `initial_failure_damage_file`) met its
+/// body's particles, as
 /// `tlsph check` reports it: how many samples each particle's value came from, how far the
 /// nearest sample lay, and how many samples no particle used (a table reaching beyond the body,
 /// or misplaced).
@@ -1484,8 +1485,19 @@ fn build_body<const D: usize>(
     }
     let initial_plastic_strains =
         initial_plastic_strains::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
-    let initial_damage =
-        initial_damage::<D>(ctx, b, &field, &materials[material], spacing, &positions)?;
+    let damage_field = |which| {
+        initial_damage::<D>(
+            ctx,
+            b,
+            &field,
+            &materials[material],
+            spacing,
+            &positions,
+            which,
+        )
+    };
+    let initial_damage = damage_field(InitialDamage::Softening)?;
+    let initial_failure_damage = damage_field(InitialDamage::JohnsonCookFailure)?;
     // Each particle's ε̄p for the yield checks below; `None` where it is not known (its table
     // is not read, for `tlsph particles`), and then no yield check is made.
     let plastic_strain_unknown = b.initial_plastic_strain_file.is_some() && !ctx.read_field_tables;
@@ -1559,6 +1571,7 @@ fn build_body<const D: usize>(
         initial_stresses,
         initial_plastic_strains,
         initial_damage,
+        initial_failure_damage,
     })
 }
 
@@ -1912,12 +1925,23 @@ fn initial_plastic_strains<const D: usize>(
     Ok(Some(strains))
 }
 
-/// The softening damage D of each particle at t = 0 from `initial_damage` (uniform) or
-/// `initial_damage_file` (a CSV table with the column `damage`, the name of the output field,
-/// mapped as the other field tables), or `None` if the body declares neither (or its table is
-/// not read). Only for materials with a `damage` law; every value in \[0, 1) (a failed particle,
-/// D = 1, is not started: it would be cut from the body). A linear fit is kept within
-/// \[0, the table's largest value\].
+/// Which damage variable an initial damage field sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum InitialDamage {
+    /// The softening damage of a `damage` law (`initial_damage`, numerics.md §9.1–9.2).
+    Softening,
+    /// The cumulative damage of a `johnson-cook` failure law (`initial_failure_damage`,
+    /// numerics.md §8.6).
+    JohnsonCookFailure,
+}
+
+/// The damage D of each particle at t = 0 of the variable `which` names: from
+/// `initial_damage` / `initial_failure_damage` (uniform) or `initial_damage_file` /
+/// `initial_failure_damage_file` (a CSV table with the column `damage`, the name of the output
+/// field, mapped as the other field tables), or `None` if the body declares neither (or its
+/// table is not read). Only for materials with that variable (a `damage` law; a `johnson-cook`
+/// failure law); every value in \[0, 1) (a failed particle, D = 1, is not started: it would be
+/// cut from the body). A linear fit is kept within \[0, the table's largest value\].
 fn initial_damage<const D: usize>(
     ctx: &Context<'_>,
     b: &BodyTable,
@@ -1925,11 +1949,24 @@ fn initial_damage<const D: usize>(
     material: &MaterialDescription,
     spacing: f64,
     positions: &[Vector<D>],
+    which: InitialDamage,
 ) -> Result<Option<Vec<f64>>, SceneError> {
+    let (uniform, table, keys) = match which {
+        InitialDamage::Softening => (
+            &b.initial_damage,
+            &b.initial_damage_file,
+            ["initial_damage", "initial_damage_file"],
+        ),
+        InitialDamage::JohnsonCookFailure => (
+            &b.initial_failure_damage,
+            &b.initial_failure_damage_file,
+            ["initial_failure_damage", "initial_failure_damage_file"],
+        ),
+    };
     let damage_field = ScalarInitialField {
-        uniform: b.initial_damage.as_ref(),
-        table: b.initial_damage_file.as_ref(),
-        keys: ["initial_damage", "initial_damage_file"],
+        uniform: uniform.as_ref(),
+        table: table.as_ref(),
+        keys,
         column: &crate::scene_field_file::DAMAGE_COLUMNS,
         what: "damage",
         allowed: |d| (0.0..1.0).contains(&d),
@@ -1941,14 +1978,28 @@ fn initial_damage<const D: usize>(
     let Some((span, key)) = damage_field.declared(ctx, field)? else {
         return Ok(None);
     };
-    if material.model.softening_damage().is_none() {
+    let johnson_cook_failure = matches!(
+        material.model.failure(),
+        Some(tlsph_solver::FailureModel::JohnsonCook { .. })
+    );
+    let missing = match which {
+        InitialDamage::Softening if material.model.softening_damage().is_none() => {
+            Some(if johnson_cook_failure {
+                "has no damage law (declare `damage` on it); its Johnson–Cook failure damage is set by `initial_failure_damage`"
+            } else {
+                "has no damage law (declare `damage` on it)"
+            })
+        }
+        InitialDamage::JohnsonCookFailure if !johnson_cook_failure => Some(
+            "has no Johnson–Cook failure law (declare `failure` with model `johnson-cook` on it)",
+        ),
+        _ => None,
+    };
+    if let Some(missing) = missing {
         return Err(ctx.error(
             &span,
             &field(key),
-            format!(
-                "material `{}` has no damage law (declare `damage` on it)",
-                material.name
-            ),
+            format!("material `{}` {missing}", material.name),
         ));
     }
     Ok(damage_field

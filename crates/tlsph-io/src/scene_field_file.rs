@@ -1,9 +1,10 @@
 //! Initial fields read from CSV tables of sample points (`initial_stress_file`,
-//! `initial_velocity_file`, `initial_plastic_strain_file`, `initial_damage_file`), each
-//! particle given the values of its nearest sample or of a linear moving-least-squares fit over
-//! the samples around it (ours, not in the theses, which start from rest or from uniform or
-//! linear fields). Typical sources: a residual stress, a velocity, a plastic strain or a damage
-//! field computed by another code, or a field measured on a grid.
+//! `initial_velocity_file`, `initial_plastic_strain_file`, `initial_damage_file`,
+//! `initial_failure_damage_file`), each particle given the values of its nearest sample or of
+//! a linear moving-least-squares fit over the samples around it (ours, not in the theses, which
+//! start from rest or from uniform or linear fields). Typical sources: a residual stress, a
+//! velocity, a plastic strain or a damage field computed by another code, or a field measured
+//! on a grid.
 
 use std::path::Path;
 use tlsph_math::Vector;
@@ -18,7 +19,7 @@ pub(crate) const VELOCITY_COLUMNS: [&str; 3] = ["vx", "vy", "vz"];
 /// The effective plastic strain column (named as the `plastic_strain` output field).
 pub(crate) const PLASTIC_STRAIN_COLUMNS: [&str; 1] = ["plastic_strain"];
 
-/// The softening damage column (named as the `damage` output field).
+/// The damage column, softening or Johnson–Cook (named as the `damage` output field).
 pub(crate) const DAMAGE_COLUMNS: [&str; 1] = ["damage"];
 
 /// The sample points of a field table and the field's N components at each.

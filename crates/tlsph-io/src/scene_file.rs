@@ -318,6 +318,10 @@ pub(crate) struct BodyTable {
     pub initial_damage: Option<Spanned<f64>>,
     /// A damage field read from a CSV file of sample points.
     pub initial_damage_file: Option<Spanned<FieldFileTable>>,
+    /// Uniform Johnson–Cook cumulative (failure) damage of every particle at t = 0.
+    pub initial_failure_damage: Option<Spanned<f64>>,
+    /// A Johnson–Cook failure damage field read from a CSV file of sample points.
+    pub initial_failure_damage_file: Option<Spanned<FieldFileTable>>,
 }
 
 /// `initial_stress_file = { path = "residual.csv", reach = 2e-3, interpolation = "linear" }`

@@ -363,3 +363,88 @@ fn initial_damage_errors_name_the_field_and_line() {
         "{e}"
     );
 }
+
+/// [`plastic_bar`] with a Johnson–Cook failure law of constant failure strain 0.5 in place of
+/// its softening law when `softening` is false, beside it when true, and `extra` appended to
+/// the bar body's table.
+fn johnson_cook_failure_bar(softening: bool, extra: &str) -> String {
+    let failure = "failure = { model = \"johnson-cook\", d = [0.5, 0.0, 0.0, 0.0, 0.0], reference_strain_rate = 1.0, room_temperature = 293.0, melt_temperature = 1356.0 }";
+    let peerlings = "damage = { model = \"peerlings\", kappa0 = 0.001, kappa_c = 0.01 }\n";
+    let mut text = plastic_bar(failure);
+    if !softening {
+        assert_eq!(text.matches(peerlings).count(), 1);
+        text = text.replace(peerlings, "");
+    }
+    let anchor = "box = { min = [0.0, 0.0], max = [4.0, 10.0] }\n";
+    assert_eq!(text.matches(anchor).count(), 1);
+    text.replace(anchor, &format!("{anchor}{extra}\n"))
+}
+
+#[test]
+fn an_initial_johnson_cook_failure_damage_is_read_uniform_or_from_a_table() {
+    // Uniform: every particle of the bar, none of the plate, and the run starts from it.
+    let text = johnson_cook_failure_bar(false, "initial_failure_damage = 0.3");
+    let model = model_2d(parse_scene(&text, "s.toml").unwrap());
+    assert_eq!(model.bodies[0].initial_failure_damage, Some(vec![0.3; 40]));
+    assert_eq!(model.bodies[0].initial_damage, None);
+    assert_eq!(model.bodies[1].initial_failure_damage, None);
+    let sim = tlsph_solver::Simulation::new(model).unwrap();
+    assert_eq!(sim.sample(tlsph_solver::ParticleField::Damage, 7), 0.3);
+    // With a softening law as well, each key sets its own variable.
+    let both = "initial_failure_damage = 0.3\ninitial_damage = 0.1";
+    let model = model_2d(parse_scene(&johnson_cook_failure_bar(true, both), "s.toml").unwrap());
+    assert_eq!(model.bodies[0].initial_failure_damage, Some(vec![0.3; 40]));
+    assert_eq!(model.bodies[0].initial_damage, Some(vec![0.1; 40]));
+    // A table (nearest sample): D = 0.2 on the bar's left half, 0.6 on its right.
+    let dir = tempfile::tempdir().unwrap();
+    let table = "x, y, damage\n1.0, 5.0, 0.2\n3.0, 5.0, 0.6\n";
+    let key = "initial_failure_damage_file = { path = \"fields/d.csv\", reach = 10.0 }";
+    let text = johnson_cook_failure_bar(false, key);
+    let scene = super::load_with_table(dir.path(), &text, "fields/d.csv", table).unwrap();
+    assert_eq!(scene.field_tables.len(), 1);
+    assert_eq!(
+        scene.field_tables[0].field,
+        "body[bar].initial_failure_damage_file"
+    );
+    let model = model_2d(scene);
+    let body = &model.bodies[0];
+    for (x, d) in body
+        .positions
+        .iter()
+        .zip(body.initial_failure_damage.as_ref().unwrap())
+    {
+        assert_eq!(*d, if x.x < 2.0 { 0.2 } else { 0.6 }, "D at {x:?}");
+    }
+}
+
+#[test]
+fn initial_failure_damage_errors_name_the_field_and_the_other_key() {
+    let text = johnson_cook_failure_bar(false, "initial_failure_damage = 1.0");
+    let e = parse_scene(&text, "s.toml").unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_failure_damage", "{e}");
+    assert!(e.message.contains("≥ 0 and < 1, got 1"), "{e}");
+    // A softening law is not a failure law, and the softening key on a material with only the
+    // failure law points to the failure key.
+    let e = parse_scene(&with_bar_lines("initial_failure_damage = 0.1"), "s.toml").unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_failure_damage", "{e}");
+    assert!(
+        e.message
+            .contains("material `bar` has no Johnson–Cook failure law"),
+        "{e}"
+    );
+    let text = johnson_cook_failure_bar(false, "initial_damage = 0.1");
+    let e = parse_scene(&text, "s.toml").unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_damage", "{e}");
+    assert!(e.message.contains("set by `initial_failure_damage`"), "{e}");
+    let dir = tempfile::tempdir().unwrap();
+    let both = "initial_failure_damage_file = { path = \"d.csv\" }\ninitial_failure_damage = 0.1";
+    let text = johnson_cook_failure_bar(false, both);
+    let e = super::load_with_table(dir.path(), &text, "d.csv", "x, y, damage\n1.0, 1.0, 0.5\n")
+        .unwrap_err();
+    assert_eq!(e.field, "body[bar].initial_failure_damage_file", "{e}");
+    assert!(
+        e.message
+            .contains("`initial_failure_damage` cannot be declared with it"),
+        "{e}"
+    );
+}
