@@ -659,37 +659,46 @@ fn initial_damage_is_refused_outside_0_to_1_and_without_a_damage_law() {
             m.materials[0].model = MaterialModel::LinearElastic(elastic);
         }
         m.bodies[0].initial_damage = Some(damage);
-        match Simulation::new(m) {
-            Err(SetupError::InvalidConfig { field, message }) => {
-                assert_eq!(field, "initial_damage");
-                message
-            }
-            other => panic!("expected an initial_damage error, got {other:?}"),
-        }
+        refused_as(m, "initial_damage")
     };
-    for bad in [1.0, -0.1, f64::NAN] {
-        let mut damage = vec![0.5; 6];
-        damage[4] = bad;
-        let message = with(damage, true);
-        assert!(message.contains("particle 4 at [4.5e0]"), "{message}");
-        assert!(message.contains("0 ≤ D < 1"), "{message}");
-    }
-    assert!(with(vec![0.5; 5], true).contains("has 6 particles but 5 damage values"));
+    assert_damage_values_checked(|damage| with(damage, true));
     assert!(with(vec![0.5; 6], false).contains("has no damage law"));
 }
 
-/// A 1D perfectly plastic von Mises patch (E = 1, ν = 0, σ_y = 5e-4) with a Johnson–Cook
-/// failure law of constant failure strain ε_f = D1 = 2e-3 (D2 … D5 = 0), started at the
-/// failure damage `initial` (if given), driven through [`driven_stretches`]; returns the
-/// Hencky strain at which every particle has failed. `heated`: with adiabatic heating (the
-/// state then also carries a temperature; ε_f does not depend on it, D5 = 0).
-fn johnson_cook_patch_failure_strain(initial: Option<f64>, heated: bool) -> f64 {
-    use tlsph_materials::JohnsonCookFailure;
-    let dx = 1.0;
-    let positions = lattice([8], dx);
-    let n = positions.len();
-    let (sigma_y, strain_to_failure) = (5e-4, 2e-3);
-    let material = MaterialModel::ElasticPlastic(ElasticPlastic {
+/// The message of the setup error of `m`, which must be refused as an invalid `field`.
+fn refused_as(m: Model<1>, field: &str) -> String {
+    match Simulation::new(m) {
+        Err(SetupError::InvalidConfig {
+            field: got,
+            message,
+        }) if got == field => message,
+        other => panic!("expected a {field} error, got {other:?}"),
+    }
+}
+
+/// Asserts that an initial damage setter on a body of 6 particles (`refusal(values)` returns
+/// its error message) refuses D = 1, −0.1 and NaN at particle 4, naming it and the rule, and a
+/// wrong number of values.
+fn assert_damage_values_checked(refusal: impl Fn(Vec<f64>) -> String) {
+    for bad in [1.0, -0.1, f64::NAN] {
+        let mut damage = vec![0.5; 6];
+        damage[4] = bad;
+        let message = refusal(damage);
+        assert!(message.contains("particle 4 at [4.5e0]"), "{message}");
+        assert!(message.contains("0 ≤ D < 1"), "{message}");
+    }
+    let message = refusal(vec![0.5; 5]);
+    assert!(
+        message.contains("has 6 particles but 5 damage values"),
+        "{message}"
+    );
+}
+
+/// A 1D perfectly plastic von Mises material (E = 1, ν = 0, yield stress `sigma_y`) with a
+/// Johnson–Cook failure law of constant failure strain `strain_to_failure` = D1 (D2 … D5 = 0),
+/// with adiabatic heating when `heated`.
+fn johnson_cook_failing(sigma_y: f64, strain_to_failure: f64, heated: bool) -> MaterialModel {
+    MaterialModel::ElasticPlastic(ElasticPlastic {
         elastic: LinearElastic::new(1.0, 0.0).unwrap(),
         strength: StrengthModel::VonMises(VonMisesPlasticity::new(sigma_y, 0.0).unwrap()),
         pressure: PressureModel::Hypoelastic,
@@ -699,13 +708,27 @@ fn johnson_cook_patch_failure_strain(initial: Option<f64>, heated: bool) -> f64 
             room_temperature: 293.0,
         }),
         failure: Some(tlsph_solver::FailureModel::JohnsonCook {
-            model: JohnsonCookFailure::new(strain_to_failure, 0.0, 0.0, 0.0, 0.0).unwrap(),
+            model: tlsph_materials::JohnsonCookFailure::new(strain_to_failure, 0.0, 0.0, 0.0, 0.0)
+                .unwrap(),
             reference_strain_rate: 1.0,
             room_temperature: 293.0,
             melt_temperature: 1356.0,
         }),
         damage: None,
-    });
+    })
+}
+
+/// A 1D perfectly plastic von Mises patch (E = 1, ν = 0, σ_y = 5e-4) with a Johnson–Cook
+/// failure law of constant failure strain ε_f = D1 = 2e-3 (D2 … D5 = 0), started at the
+/// failure damage `initial` (if given), driven through [`driven_stretches`]; returns the
+/// Hencky strain at which every particle has failed. `heated`: with adiabatic heating (the
+/// state then also carries a temperature; ε_f does not depend on it, D5 = 0).
+fn johnson_cook_patch_failure_strain(initial: Option<f64>, heated: bool) -> f64 {
+    let dx = 1.0;
+    let positions = lattice([8], dx);
+    let n = positions.len();
+    let (sigma_y, strain_to_failure) = (5e-4, 2e-3);
+    let material = johnson_cook_failing(sigma_y, strain_to_failure, heated);
     let mut m = with_material(positions.clone(), dx, material, 1e9);
     m.bodies[0].initial_failure_damage = initial.map(|d| vec![d; n]);
     let mut sim = Simulation::new(m).unwrap();
@@ -769,45 +792,19 @@ fn an_initial_johnson_cook_damage_is_refused_outside_0_to_1_and_without_the_law(
     let with = |damage: Vec<f64>, material: MaterialModel| {
         let mut m = with_material(positions.clone(), dx, material, 1.0);
         m.bodies[0].initial_failure_damage = Some(damage);
-        match Simulation::new(m) {
-            Err(SetupError::InvalidConfig { field, message }) => {
-                assert_eq!(field, "initial_failure_damage");
-                message
-            }
-            other => panic!("expected an initial_failure_damage error, got {other:?}"),
-        }
+        refused_as(m, "initial_failure_damage")
     };
-    let mut johnson_cook = plastic_with_damage(elastic, 1.0, DamageModel::Peerlings(law));
-    if let MaterialModel::ElasticPlastic(p) = &mut johnson_cook {
-        p.damage = None;
-        p.failure = Some(tlsph_solver::FailureModel::JohnsonCook {
-            model: tlsph_materials::JohnsonCookFailure::new(0.5, 0.0, 0.0, 0.0, 0.0).unwrap(),
-            reference_strain_rate: 1.0,
-            room_temperature: 293.0,
-            melt_temperature: 1356.0,
-        });
-    }
-    for bad in [1.0, -0.1, f64::NAN] {
-        let mut damage = vec![0.5; 6];
-        damage[4] = bad;
-        let message = with(damage, johnson_cook);
-        assert!(message.contains("particle 4 at [4.5e0]"), "{message}");
-        assert!(message.contains("0 ≤ D < 1"), "{message}");
-    }
-    assert!(with(vec![0.5; 5], johnson_cook).contains("has 6 particles but 5 damage values"));
+    let johnson_cook = johnson_cook_failing(1.0, 0.5, false);
+    assert_damage_values_checked(|damage| with(damage, johnson_cook));
     // A softening law is not a Johnson–Cook failure law.
     let softening = plastic_with_damage(elastic, 1.0, DamageModel::Peerlings(law));
     assert!(with(vec![0.5; 6], softening).contains("has no Johnson–Cook failure law"));
     // And the softening key names this one on a material with only the failure law.
     let mut m = with_material(positions.clone(), dx, johnson_cook, 1.0);
     m.bodies[0].initial_damage = Some(vec![0.5; 6]);
-    match Simulation::new(m) {
-        Err(SetupError::InvalidConfig { message, .. }) => {
-            assert!(
-                message.contains("set by `initial_failure_damage`"),
-                "{message}"
-            )
-        }
-        other => panic!("expected an initial_damage error, got {other:?}"),
-    }
+    let message = refused_as(m, "initial_damage");
+    assert!(
+        message.contains("set by `initial_failure_damage`"),
+        "{message}"
+    );
 }
