@@ -170,6 +170,11 @@ pub fn frame_of<const D: usize>(sim: &Simulation<D>) -> Frame {
     if sim.has_failure() {
         arrays.push(scalar(ParticleField::Damage));
     }
+    // Each of the two damages `damage` merges, for a material that has both.
+    if sim.has_two_damages() {
+        arrays.push(scalar(ParticleField::SofteningDamage));
+        arrays.push(scalar(ParticleField::FailureDamage));
+    }
     Frame {
         time: sim.time(),
         positions,

@@ -2977,12 +2977,23 @@ fn build_probe<const D: usize>(
         let parsed: ParticleField = f
             .parse()
             .map_err(|e: String| ctx.error(&t.fields.span(), &field("fields"), e))?;
-        if parsed == ParticleField::Damage && !materials[body.material].model.has_damage() {
+        let model = &materials[body.material].model;
+        let missing = match parsed {
+            ParticleField::Damage if !model.has_damage() => Some("a failure or damage model"),
+            ParticleField::SofteningDamage if model.softening_damage().is_none() => {
+                Some("a `damage` law")
+            }
+            ParticleField::FailureDamage if model.failure().is_none() => {
+                Some("a `failure` criterion")
+            }
+            _ => None,
+        };
+        if let Some(missing) = missing {
             return Err(ctx.error(
                 &t.fields.span(),
                 &field("fields"),
                 format!(
-                    "`damage` needs a failure or damage model in the material of body `{}`",
+                    "`{parsed}` needs {missing} in the material of body `{}`",
                     body.name
                 ),
             ));

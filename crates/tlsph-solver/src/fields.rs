@@ -33,6 +33,15 @@ pub enum ParticleField {
     /// has a softening law and a failure criterion) or 1 once failed; 0 in bodies without a
     /// failure or damage model.
     Damage,
+    /// The damage D of the material's softening `damage` law alone (Peerlings, Grady–Kipp;
+    /// numerics.md §9.1–9.2), or 1 once failed; 0 in bodies without one. Differs from
+    /// [`ParticleField::Damage`] only where a material also has a failure criterion.
+    SofteningDamage,
+    /// The damage D of the material's failure criterion alone (Johnson–Cook D = Σ Δε̄p/ε_f,
+    /// numerics.md §8.6; 0 for the other criteria until the particle fails), or 1 once
+    /// failed; 0 in bodies without one. Differs from [`ParticleField::Damage`] only where a
+    /// material also has a softening law.
+    FailureDamage,
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -63,6 +72,8 @@ impl ParticleField {
         "plastic_strain",
         "temperature",
         "damage",
+        "softening_damage",
+        "failure_damage",
     ];
 
     /// Whether the field exists in a `dimension`-D run (vector components beyond the
@@ -92,6 +103,8 @@ impl fmt::Display for ParticleField {
             ParticleField::PlasticStrain => f.write_str("plastic_strain"),
             ParticleField::Temperature => f.write_str("temperature"),
             ParticleField::Damage => f.write_str("damage"),
+            ParticleField::SofteningDamage => f.write_str("softening_damage"),
+            ParticleField::FailureDamage => f.write_str("failure_damage"),
         }
     }
 }
@@ -116,6 +129,8 @@ impl FromStr for ParticleField {
             "plastic_strain" => ParticleField::PlasticStrain,
             "temperature" => ParticleField::Temperature,
             "damage" => ParticleField::Damage,
+            "softening_damage" => ParticleField::SofteningDamage,
+            "failure_damage" => ParticleField::FailureDamage,
             _ => {
                 let (prefix, suffix) = s.rsplit_once('_').ok_or_else(unknown)?;
                 let chars: Vec<char> = suffix.chars().collect();

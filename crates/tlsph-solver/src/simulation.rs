@@ -1186,6 +1186,15 @@ impl<const D: usize> Simulation<D> {
         !self.removed.is_empty()
     }
 
+    /// Whether any body's material has both a softening `damage` law and a failure criterion,
+    /// whose damages [`ParticleField::Damage`] merges (the larger of the two).
+    pub fn has_two_damages(&self) -> bool {
+        self.bodies.iter().any(|b| {
+            let material = &self.materials[b.material];
+            material.softening_damage().is_some() && material.failure().is_some()
+        })
+    }
+
     /// Adds every declared effect's accelerations at t^n, kicks with them, and books their
     /// work −Σ m a·v^n Δt* and resultant force, both summed in fixed chunks so the result does
     /// not depend on the thread count. The work is booked once every effect has kicked, with
@@ -1738,6 +1747,16 @@ impl<const D: usize> Simulation<D> {
                     (Some(criterion), Some(softening)) => criterion.max(softening),
                     (criterion, softening) => criterion.or(softening).unwrap_or(0.0),
                 }
+            }
+            ParticleField::SofteningDamage => {
+                let b = self.body_of(i);
+                let k = i - self.bodies[b].range.start;
+                self.damage[b].damage(k).unwrap_or(0.0)
+            }
+            ParticleField::FailureDamage => {
+                let b = self.body_of(i);
+                let k = i - self.bodies[b].range.start;
+                self.plastic[b].damage(k).unwrap_or(0.0)
             }
             ParticleField::Temperature => {
                 let b = self.body_of(i);

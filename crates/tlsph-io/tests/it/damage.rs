@@ -448,3 +448,63 @@ fn initial_failure_damage_errors_name_the_field_and_the_other_key() {
         "{e}"
     );
 }
+
+#[test]
+fn each_of_two_damages_has_its_own_output_field() {
+    // A bar with both laws, started at softening D 0.1 and Johnson–Cook D 0.3: `damage` merges
+    // them (the larger), `softening_damage` and `failure_damage` give each, in probes and in
+    // the frames; with one law the frames carry `damage` only.
+    use tlsph_solver::ParticleField;
+    let both = "initial_failure_damage = 0.3\ninitial_damage = 0.1";
+    let text = johnson_cook_failure_bar(true, both).replace(
+        "fields = [\"damage\", \"stress_yy\"]",
+        "fields = [\"damage\", \"softening_damage\", \"failure_damage\"]",
+    );
+    let scene = parse_scene(&text, "s.toml").unwrap();
+    assert_eq!(
+        scene.probes[0].fields,
+        [
+            ParticleField::Damage,
+            ParticleField::SofteningDamage,
+            ParticleField::FailureDamage
+        ]
+    );
+    let sim = tlsph_solver::Simulation::new(model_2d(scene)).unwrap();
+    let sample = |field| sim.sample(field, 7);
+    assert_eq!(sample(ParticleField::Damage), 0.3);
+    assert_eq!(sample(ParticleField::SofteningDamage), 0.1);
+    assert_eq!(sample(ParticleField::FailureDamage), 0.3);
+    let frame = tlsph_io::frame_of(&sim);
+    let array = |name: &str| frame.arrays.iter().find(|a| a.name == name);
+    assert_eq!(array("softening_damage").unwrap().values[7], 0.1);
+    assert_eq!(array("failure_damage").unwrap().values[7], 0.3);
+    assert_eq!(array("damage").unwrap().values[7], 0.3);
+    let one_law = johnson_cook_failure_bar(false, "initial_failure_damage = 0.3");
+    let sim = tlsph_solver::Simulation::new(model_2d(parse_scene(&one_law, "s.toml").unwrap()));
+    let frame = tlsph_io::frame_of(&sim.unwrap());
+    let names: Vec<&str> = frame.arrays.iter().map(|a| a.name.as_str()).collect();
+    assert!(names.contains(&"damage"), "{names:?}");
+    assert!(!names.iter().any(|n| n.ends_with("_damage")), "{names:?}");
+    // A probe of a damage the body's material does not have is refused.
+    let softening_only = with_bar_lines("").replace(
+        "fields = [\"damage\", \"stress_yy\"]",
+        "fields = [\"failure_damage\"]",
+    );
+    let e = error_of(&softening_only);
+    assert_eq!(e.field, "probe[middle].fields", "{e}");
+    assert!(
+        e.message
+            .contains("`failure_damage` needs a `failure` criterion"),
+        "{e}"
+    );
+    let failure_only = johnson_cook_failure_bar(false, "").replace(
+        "fields = [\"damage\", \"stress_yy\"]",
+        "fields = [\"softening_damage\"]",
+    );
+    let e = error_of(&failure_only);
+    assert!(
+        e.message
+            .contains("`softening_damage` needs a `damage` law"),
+        "{e}"
+    );
+}
