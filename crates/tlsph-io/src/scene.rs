@@ -114,10 +114,9 @@ pub struct Scene {
 
 /// How a field table (`initial_stress_file`, `initial_velocity_file`,
 /// `initial_plastic_strain_file`, `initial_damage_file`, `initial_failure_damage_file`) met its
-/// body's particles, as
-/// `tlsph check` reports it: how many samples each particle's value came from, how far the
-/// nearest sample lay, and how many samples no particle used (a table reaching beyond the body,
-/// or misplaced).
+/// body's particles, as `tlsph check` reports it: how many samples each particle's value came
+/// from, how far the nearest sample lay, and how many samples no particle used (a table
+/// reaching beyond the body, or misplaced).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldTableSummary {
     /// The scene key, e.g. `body[plate].initial_stress_file`.

@@ -1716,6 +1716,11 @@ impl<const D: usize> Simulation<D> {
     pub fn sample(&self, field: ParticleField, i: usize) -> f64 {
         let p = &self.particles;
         let component = |v: Vector<D>, k: usize| if k < D { v[k] } else { 0.0 };
+        // The particle's body b and its index k in that body, for the per-body state.
+        let in_body = || {
+            let b = self.body_of(i);
+            (b, i - self.bodies[b].range.start)
+        };
         match field {
             ParticleField::Stress(a, b) => p.stress[i][(a, b)],
             ParticleField::Pressure => -p.stress[i].trace() / 3.0,
@@ -1733,14 +1738,12 @@ impl<const D: usize> Simulation<D> {
             ParticleField::Jacobian => p.jacobian[i],
             ParticleField::InternalEnergy => p.internal_energy[i],
             ParticleField::PlasticStrain => {
-                let b = self.body_of(i);
-                let k = i - self.bodies[b].range.start;
+                let (b, k) = in_body();
                 // Elastic bodies have no plastic strain: 0 is the true value.
                 self.plastic[b].plastic_strain(k).unwrap_or(0.0)
             }
             ParticleField::Damage => {
-                let b = self.body_of(i);
-                let k = i - self.bodies[b].range.start;
+                let (b, k) = in_body();
                 // With a softening law and a failure criterion on one material, the larger of
                 // the two damages (both read 1 once the particle has failed).
                 match (self.plastic[b].damage(k), self.damage[b].damage(k)) {
@@ -1749,18 +1752,15 @@ impl<const D: usize> Simulation<D> {
                 }
             }
             ParticleField::SofteningDamage => {
-                let b = self.body_of(i);
-                let k = i - self.bodies[b].range.start;
+                let (b, k) = in_body();
                 self.damage[b].damage(k).unwrap_or(0.0)
             }
             ParticleField::FailureDamage => {
-                let b = self.body_of(i);
-                let k = i - self.bodies[b].range.start;
+                let (b, k) = in_body();
                 self.plastic[b].damage(k).unwrap_or(0.0)
             }
             ParticleField::Temperature => {
-                let b = self.body_of(i);
-                let k = i - self.bodies[b].range.start;
+                let (b, k) = in_body();
                 self.plastic[b].temperature(k).unwrap_or(f64::NAN)
             }
         }
