@@ -1977,10 +1977,7 @@ fn initial_damage<const D: usize>(
     let Some((span, key)) = damage_field.declared(ctx, field)? else {
         return Ok(None);
     };
-    let johnson_cook_failure = matches!(
-        material.model.failure(),
-        Some(tlsph_solver::FailureModel::JohnsonCook { .. })
-    );
+    let johnson_cook_failure = material.model.has_johnson_cook_failure();
     let missing = match which {
         InitialDamage::Softening if material.model.softening_damage().is_none() => {
             Some(if johnson_cook_failure {

@@ -294,6 +294,12 @@ impl MaterialModel {
         }
     }
 
+    /// Whether the material fails by Johnson–Cook cumulative damage (numerics.md §8.6), the
+    /// damage variable an initial failure damage sets.
+    pub fn has_johnson_cook_failure(&self) -> bool {
+        matches!(self.failure(), Some(FailureModel::JohnsonCook { .. }))
+    }
+
     /// Whether the model carries a temperature.
     pub fn has_temperature(&self) -> bool {
         matches!(self, MaterialModel::ElasticPlastic(m) if m.thermal.is_some())

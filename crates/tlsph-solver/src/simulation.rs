@@ -1489,7 +1489,7 @@ impl<const D: usize> Simulation<D> {
         let info = &self.bodies[body];
         let material = &self.materials[info.material];
         let Some(model) = material.softening_damage().copied() else {
-            let hint = if matches!(material.failure(), Some(FailureModel::JohnsonCook { .. })) {
+            let hint = if material.has_johnson_cook_failure() {
                 "; its Johnson–Cook failure damage is set by `initial_failure_damage`"
             } else {
                 ""
@@ -1522,10 +1522,7 @@ impl<const D: usize> Simulation<D> {
         let field = "initial_failure_damage";
         self.initial_field_range(body, field, damages.len(), "damage values")?;
         let info = &self.bodies[body];
-        if !matches!(
-            self.materials[info.material].failure(),
-            Some(FailureModel::JohnsonCook { .. })
-        ) {
+        if !self.materials[info.material].has_johnson_cook_failure() {
             return Err(SetupError::InvalidConfig {
                 field,
                 message: format!(
